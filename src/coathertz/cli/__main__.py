@@ -1,0 +1,5 @@
+import sys
+
+from coathertz.cli import main
+
+sys.exit(main())

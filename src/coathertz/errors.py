@@ -1,0 +1,28 @@
+"""Exceptions and warnings shared by every part of coathertz."""
+
+from __future__ import annotations
+
+
+class CoatHertzError(ValueError):
+    """Invalid input: the message names the parameter and its valid range."""
+
+
+class ConvergenceError(RuntimeError):
+    """An iterative solver did not reach its tolerance within its iteration cap."""
+
+
+class FittedRangeWarning(UserWarning):
+    """A predictor was evaluated outside the range its fitted curves cover."""
+
+
+def check_positive(name: str, value: float, *, allow_inf: bool = False) -> None:
+    """Raise :class:`CoatHertzError` unless ``0 < value`` (finite unless ``allow_inf``)."""
+    import math
+
+    try:
+        v = float(value)
+    except (TypeError, ValueError) as exc:
+        raise CoatHertzError(f"{name} must be a number > 0, got {value!r}") from exc
+    if math.isnan(v) or v <= 0 or (math.isinf(v) and not allow_inf):
+        rng = "0 < {} <= inf".format(name) if allow_inf else f"0 < {name} < inf"
+        raise CoatHertzError(f"{name} must satisfy {rng}, got {value!r}")

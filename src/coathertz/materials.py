@@ -1,0 +1,225 @@
+"""Materials, coatings and bodies: the inputs shared by every method.
+
+Nomenclature
+------------
+E, nu
+    Young's modulus [Pa] and Poisson's ratio of an isotropic material.
+E_star
+    Plane-strain modulus E/(1 - nu^2) ("equivalent modulus" of the paper, below eq 2).
+h
+    Coating thickness [m].
+mu, lam, kappa
+    Shear-modulus ratio and the Dundurs-like constants of eq (13).
+
+A rigid material has ``E = inf``; its ``E_star`` is infinite and its compliance zero,
+so eqs (2) and (18) need no special case.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from coathertz.errors import CoatHertzError, check_positive
+
+
+@dataclass(frozen=True)
+class Material:
+    """Isotropic linear-elastic material.
+
+    Parameters
+    ----------
+    E
+        Young's modulus [Pa], ``0 < E <= inf`` (``inf``: rigid).
+    nu
+        Poisson's ratio, ``-1 < nu <= 0.5``.
+    name
+        Optional label used in reports.
+    """
+
+    E: float
+    nu: float
+    name: str = field(default="", compare=False)
+
+    def __post_init__(self) -> None:
+        check_positive("E", self.E, allow_inf=True)
+        try:
+            nu = float(self.nu)
+        except (TypeError, ValueError) as exc:
+            raise CoatHertzError(f"nu must be a number in (-1, 0.5], got {self.nu!r}") from exc
+        if not (-1.0 < nu <= 0.5):
+            raise CoatHertzError(f"nu must satisfy -1 < nu <= 0.5, got {self.nu!r}")
+        object.__setattr__(self, "E", float(self.E))
+        object.__setattr__(self, "nu", nu)
+
+    @classmethod
+    def rigid(cls) -> Material:
+        """A rigid material (E = inf)."""
+        return cls(math.inf, 0.0, name="rigid")
+
+    @property
+    def is_rigid(self) -> bool:
+        return math.isinf(self.E)
+
+    @property
+    def E_star(self) -> float:
+        """Plane-strain modulus E/(1 - nu^2) [Pa] (paper, below eq 2)."""
+        if self.is_rigid:
+            return math.inf
+        return self.E / (1.0 - self.nu**2)
+
+    @property
+    def compliance(self) -> float:
+        """(1 - nu^2)/E [1/Pa], the body's term in eq (2); zero for a rigid body."""
+        return 0.0 if self.is_rigid else (1.0 - self.nu**2) / self.E
+
+    @property
+    def G(self) -> float:
+        """Shear modulus E / (2 (1 + nu)) [Pa]."""
+        return self.E / (2.0 * (1.0 + self.nu))
+
+
+RIGID = Material.rigid()
+
+
+@dataclass(frozen=True)
+class Coating:
+    """A layer of uniform thickness ``h`` perfectly bonded to its substrate.
+
+    Parameters
+    ----------
+    material
+        Coating material; must be elastic (a rigid coating is rejected).
+    h
+        Thickness [m], ``0 <= h < inf``.
+    """
+
+    material: Material
+    h: float
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.material, Material):
+            raise CoatHertzError(f"coating material must be a Material, got {self.material!r}")
+        if self.material.is_rigid:
+            raise CoatHertzError("coating material must be elastic (0 < E < inf), got a rigid one")
+        try:
+            h = float(self.h)
+        except (TypeError, ValueError) as exc:
+            raise CoatHertzError(f"coating thickness h must be a number >= 0, got {self.h!r}") from exc
+        if math.isnan(h) or h < 0 or math.isinf(h):
+            raise CoatHertzError(f"coating thickness h must satisfy 0 <= h < inf [m], got {self.h!r}")
+        object.__setattr__(self, "h", h)
+
+
+@dataclass(frozen=True)
+class CoatingConstants:
+    """Constants of the layered-body FRF, eq (13).
+
+    ``mu = Ec (1 + nu_s) / (Es (1 + nu_c))`` (shear modulus ratio Gc/Gs),
+    ``lam = 1 - 4 (1 - nu_c) / (1 + mu (3 - 4 nu_s))``,
+    ``kappa = (mu - 1) / (mu + 3 - 4 nu_c)``.
+    Rigid substrate: ``mu = 0``, ``lam = 4 nu_c - 3``, ``kappa = 1/lam`` (Section 4).
+    """
+
+    mu: float
+    lam: float
+    kappa: float
+
+
+def coating_constants(coating: Material, substrate: Material) -> CoatingConstants:
+    """Return mu, lambda, kappa of eq (13) for ``coating`` on ``substrate``."""
+    nu_c = coating.nu
+    if substrate.is_rigid:
+        mu = 0.0
+        lam = 4.0 * nu_c - 3.0  # Section 4
+        return CoatingConstants(mu, lam, 1.0 / lam)
+    nu_s = substrate.nu
+    mu = coating.E * (1.0 + nu_s) / (substrate.E * (1.0 + nu_c))  # eq (13)
+    lam = 1.0 - 4.0 * (1.0 - nu_c) / (1.0 + mu * (3.0 - 4.0 * nu_s))  # eq (13)
+    kappa = (mu - 1.0) / (mu + 3.0 - 4.0 * nu_c)  # eq (13)
+    return CoatingConstants(mu, lam, kappa)
+
+
+@dataclass(frozen=True)
+class Body:
+    """One of the two contacting bodies.
+
+    Parameters
+    ----------
+    material
+        Substrate (bulk) material; ``RIGID`` for a rigid body or rigid substrate.
+    coating
+        Optional coating on the contacting surface.
+    Rx, Ry
+        Principal radii of curvature of the surface at the first point of contact [m];
+        ``inf`` for a flat surface (half-space). Convex surfaces have positive radii.
+    name
+        Optional label.
+    """
+
+    material: Material
+    coating: Coating | None = None
+    Rx: float = math.inf
+    Ry: float = math.inf
+    name: str = field(default="", compare=False)
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.material, Material):
+            raise CoatHertzError(f"body material must be a Material, got {self.material!r}")
+        if self.coating is not None and not isinstance(self.coating, Coating):
+            raise CoatHertzError(f"coating must be a Coating or None, got {self.coating!r}")
+        check_positive("Rx", self.Rx, allow_inf=True)
+        check_positive("Ry", self.Ry, allow_inf=True)
+        object.__setattr__(self, "Rx", float(self.Rx))
+        object.__setattr__(self, "Ry", float(self.Ry))
+
+    # constructors --------------------------------------------------------------
+    @classmethod
+    def rigid_sphere(cls, R: float) -> Body:
+        """A rigid sphere of radius ``R`` [m] (the paper's indenter)."""
+        return cls(RIGID, None, R, R, name="rigid sphere")
+
+    @classmethod
+    def sphere(cls, material: Material, R: float, coating: Coating | None = None) -> Body:
+        return cls(material, coating, R, R)
+
+    @classmethod
+    def half_space(cls, material: Material, coating: Coating | None = None) -> Body:
+        """A flat body (half-space), optionally coated."""
+        return cls(material, coating)
+
+    # derived -------------------------------------------------------------------
+    @property
+    def is_coated(self) -> bool:
+        return self.coating is not None and self.coating.h > 0
+
+    @property
+    def is_rigid(self) -> bool:
+        """Rigid throughout: rigid material and no (elastic) coating."""
+        return self.material.is_rigid and not self.is_coated
+
+    @property
+    def compliance_substrate(self) -> float:
+        """(1 - nu^2)/E of the substrate alone (coating removed), eq (2)."""
+        return self.material.compliance
+
+    @property
+    def compliance_coating(self) -> float:
+        """(1 - nu^2)/E of the coating as a half-space (or of the substrate if uncoated)."""
+        if self.coating is None:
+            return self.material.compliance
+        return self.coating.material.compliance
+
+    @property
+    def constants(self) -> CoatingConstants:
+        """mu, lambda, kappa of eq (13) for this body's coating on its substrate."""
+        if self.coating is None:
+            raise CoatHertzError("body has no coating: coating constants are undefined")
+        return coating_constants(self.coating.material, self.material)
+
+    @property
+    def modulus_ratio(self) -> float:
+        """E = Ec*/Es* (eq 19); 0 for a rigid substrate."""
+        if self.coating is None:
+            raise CoatHertzError("body has no coating: modulus ratio E = Ec*/Es* is undefined")
+        return self.coating.material.E_star / self.material.E_star
