@@ -24,5 +24,5 @@ def check_positive(name: str, value: float, *, allow_inf: bool = False) -> None:
     except (TypeError, ValueError) as exc:
         raise CoatHertzError(f"{name} must be a number > 0, got {value!r}") from exc
     if math.isnan(v) or v <= 0 or (math.isinf(v) and not allow_inf):
-        rng = "0 < {} <= inf".format(name) if allow_inf else f"0 < {name} < inf"
+        rng = f"0 < {name} <= inf" if allow_inf else f"0 < {name} < inf"
         raise CoatHertzError(f"{name} must satisfy {rng}, got {value!r}")

@@ -1,0 +1,147 @@
+"""Read and write contact cases as TOML, with explicit units.
+
+Format (every dimensional value carries its unit; ``"inf"`` is a flat surface)::
+
+    label = "B4C coating on 52100 steel, steel ball"
+    W = "1 N"
+    theta = "0 deg"            # optional, eq (3b)
+
+    [body1]                    # the indenter
+    material = { E = "200 GPa", nu = 0.3 }   # or material = "rigid"
+    R = "10 mm"                # or Rx = "...", Ry = "..."; default flat
+
+    [body2]                    # the (coated) half-space
+    material = { E = "200 GPa", nu = 0.3 }
+    coating = { E = "380 GPa", nu = 0.17, h = "40 um" }
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+from coathertz.case import ContactCase
+from coathertz.errors import CoatHertzError
+from coathertz.materials import RIGID, Body, Coating, Material
+from coathertz.units import parse_quantity
+
+_BODY_KEYS = {"material", "coating", "R", "Rx", "Ry", "name"}
+_TOP_KEYS = {"label", "W", "theta", "body1", "body2"}
+
+
+def _material(spec: Any, where: str) -> Material:
+    if spec == "rigid":
+        return RIGID
+    if not isinstance(spec, dict):
+        raise CoatHertzError(f"{where}: expected 'rigid' or a table {{ E = \"...\", nu = ... }}")
+    unknown = set(spec) - {"E", "nu", "name", "h"}
+    if unknown:
+        raise CoatHertzError(f"{where}: unknown keys {sorted(unknown)}")
+    for key in ("E", "nu"):
+        if key not in spec:
+            raise CoatHertzError(f"{where}: missing {key}")
+    E = parse_quantity(spec["E"], "pressure", name=f"{where}.E")
+    nu = spec["nu"]
+    if not isinstance(nu, int | float) or isinstance(nu, bool):
+        raise CoatHertzError(f"{where}.nu must be a plain number in (-1, 0.5], got {nu!r}")
+    return Material(E, nu, name=str(spec.get("name", "")))
+
+
+def _body(spec: Any, where: str) -> Body:
+    if not isinstance(spec, dict):
+        raise CoatHertzError(f"[{where}] must be a table")
+    unknown = set(spec) - _BODY_KEYS
+    if unknown:
+        raise CoatHertzError(f"[{where}]: unknown keys {sorted(unknown)}; allowed {sorted(_BODY_KEYS)}")
+    if "material" not in spec:
+        raise CoatHertzError(f"[{where}]: missing 'material'")
+    material = _material(spec["material"], f"{where}.material")
+    coating = None
+    if "coating" in spec:
+        c = spec["coating"]
+        if not isinstance(c, dict) or "h" not in c:
+            raise CoatHertzError(f"{where}.coating must be a table with E, nu and h")
+        coating = Coating(_material({k: v for k, v in c.items() if k != "h"}, f"{where}.coating"),
+                          parse_quantity(c["h"], "length", name=f"{where}.coating.h"))
+    if "R" in spec and ("Rx" in spec or "Ry" in spec):
+        raise CoatHertzError(f"[{where}]: give either R or Rx/Ry, not both")
+    if "R" in spec:
+        Rx = Ry = parse_quantity(spec["R"], "length", name=f"{where}.R")
+    else:
+        Rx = parse_quantity(spec.get("Rx", math.inf), "length", name=f"{where}.Rx")
+        Ry = parse_quantity(spec.get("Ry", math.inf), "length", name=f"{where}.Ry")
+    return Body(material, coating, Rx, Ry, name=str(spec.get("name", "")))
+
+
+def case_from_dict(data: dict) -> ContactCase:
+    """Build a :class:`ContactCase` from a parsed TOML document."""
+    unknown = set(data) - _TOP_KEYS
+    if unknown:
+        raise CoatHertzError(f"case file: unknown keys {sorted(unknown)}; allowed {sorted(_TOP_KEYS)}")
+    for key in ("W", "body1", "body2"):
+        if key not in data:
+            raise CoatHertzError(f"case file: missing '{key}'")
+    W = parse_quantity(data["W"], "force", name="W")
+    theta = parse_quantity(data.get("theta", 0.0), "angle", name="theta")
+    return ContactCase(_body(data["body1"], "body1"), _body(data["body2"], "body2"), W, theta,
+                       label=str(data.get("label", "")))
+
+
+def load_case(path: str | Path) -> ContactCase:
+    """Load a case from a TOML file, or a built-in example given as ``example:NAME``."""
+    text = str(path)
+    if text.startswith("example:"):
+        return load_example(text.split(":", 1)[1])
+    p = Path(path)
+    if not p.is_file():
+        raise CoatHertzError(f"case file {text!r} does not exist (built-ins: {examples()})")
+    try:
+        data = tomllib.loads(p.read_text())
+    except tomllib.TOMLDecodeError as exc:
+        raise CoatHertzError(f"case file {text!r} is not valid TOML: {exc}") from exc
+    return case_from_dict(data)
+
+
+def examples() -> list[str]:
+    """Names of the built-in example cases (``example:NAME``)."""
+    files = resources.files("coathertz") / "data"
+    return sorted(f.name[:-5] for f in files.iterdir() if f.name.endswith(".toml"))
+
+
+def load_example(name: str) -> ContactCase:
+    f = resources.files("coathertz") / "data" / f"{name}.toml"
+    if not f.is_file():
+        raise CoatHertzError(f"unknown example {name!r}; choose one of {examples()}")
+    return case_from_dict(tomllib.loads(f.read_text()))
+
+
+def _q(value: float, unit: str, factor: float) -> str:
+    return "inf" if math.isinf(value) else f"{value / factor:.12g} {unit}"
+
+
+def _mat(m: Material) -> str:
+    if m.is_rigid:
+        return '"rigid"'
+    return f'{{ E = "{_q(m.E, "GPa", 1e9)}", nu = {m.nu!r} }}'
+
+
+def case_to_toml(case: ContactCase) -> str:
+    """Write ``case`` in the TOML format read by :func:`load_case`."""
+    lines = []
+    if case.label:
+        lines.append(f"label = {case.label!r}".replace("'", '"'))
+    lines.append(f'W = "{_q(case.W, "N", 1.0)}"')
+    if case.theta:
+        lines.append(f'theta = "{case.theta!r} rad"')
+    for i, b in enumerate((case.body1, case.body2), start=1):
+        lines += ["", f"[body{i}]", f"material = {_mat(b.material)}"]
+        if b.coating is not None:
+            c = b.coating
+            lines.append(f'coating = {{ E = "{_q(c.material.E, "GPa", 1e9)}", nu = {c.material.nu!r}, '
+                         f'h = "{_q(c.h, "um", 1e-6)}" }}')
+        lines.append(f'Rx = "{_q(b.Rx, "mm", 1e-3)}"')
+        lines.append(f'Ry = "{_q(b.Ry, "mm", 1e-3)}"')
+    return "\n".join(lines) + "\n"

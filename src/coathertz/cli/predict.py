@@ -1,0 +1,92 @@
+"""``coathertz predict``: classical and extended Hertz predictions of one case."""
+
+from __future__ import annotations
+
+import argparse
+import math
+import warnings
+
+from coathertz.cli._common import (
+    add_case_arguments,
+    case_from_args,
+    format_table,
+    list_examples,
+    to_json,
+)
+
+NAME = "predict"
+HELP = "closed-form predictions: Hertz without coating, coating-only Hertz, extended Hertz"
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    add_case_arguments(parser)
+    parser.add_argument("--alpha", help="explicit alpha values 'a=..,p=..,delta=..' (e.g. read from figure 5)")
+    parser.add_argument("--alpha-rule", default="paper", choices=["paper", "eq21-fill"],
+                        help="how the parts of eq (19) missing from the copy are filled (NOTES.md)")
+    parser.add_argument("--json", action="store_true", help="machine-readable output")
+
+
+def _um(x: float) -> str:
+    return "inf" if math.isinf(x) else f"{x * 1e6:.5g}"
+
+
+def _mpa(x: float) -> str:
+    return "inf" if math.isinf(x) else f"{x / 1e6:.5g}"
+
+
+def run(args: argparse.Namespace) -> int:
+    from coathertz.alpha import Alphas
+    from coathertz.errors import FittedRangeWarning
+    from coathertz.predictor import ClosedFormMethod
+
+    if args.list_examples:
+        return list_examples()
+    case = case_from_args(args)
+    alphas = Alphas.parse(args.alpha) if args.alpha else None
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", FittedRangeWarning)
+        res = ClosedFormMethod(args.alpha_rule, alphas).solve(case)
+    msgs = [str(w.message) for w in caught if issubclass(w.category, FittedRangeWarning)]
+    hs, hc = case.hertz_s, case.hertz_c
+    rows = {
+        "hertz_substrate": {"delta": float(hs.delta0), "a": float(hs.a0), "p0": float(hs.p0),
+                            "r_a": float(hs.r_a0), "r_b": float(hs.r_b0)},
+        "hertz_coating": {"delta": float(hc.delta0), "a": float(hc.a0), "p0": float(hc.p0),
+                          "r_a": float(hc.r_a0), "r_b": float(hc.r_b0)},
+        "extended": {"delta": res.delta, "a": res.a, "p0": res.p0, "r_a": res.r_a, "r_b": res.r_b},
+    }
+    info = {
+        "case": case.describe(),
+        "Rx": case.Rx, "Ry": case.Ry, "R": case.R,
+        "normalisation": case.normalisers.kind,
+        "H": res.meta["H"], "E": res.meta["E"],
+        "alpha": res.meta["alpha"], "alpha_source": res.meta["rule"],
+        "E_star": res.meta["E_star"],
+        "warnings": msgs,
+    }
+    if args.json:
+        print(to_json({"units": "SI (m, Pa, N)", **info, **rows}))
+        return 0
+    print(f"case: {case.label or '(unnamed)'}\n  {case.describe()}")
+    if case.is_coated:
+        print(f"  H = {', '.join(f'{h:.4g}' for h in res.meta['H'])} (h/a0{case.normalisers.kind}), "
+              f"E = Ec*/Es* = {', '.join(f'{e:.4g}' for e in res.meta['E'])}")
+        al = res.meta["alpha"]
+        print("  alpha (" + res.meta["rule"] + "): "
+              + ", ".join(f"alpha_{k} = {', '.join(f'{x:.4g}' for x in v)}" for k, v in al.items()))
+    ell = not case.is_circular
+    header = ["", "delta [um]", "a [um]", "p0 [MPa]"] + (["r_a [um]", "r_b [um]"] if ell else [])
+    names = {"hertz_substrate": "Hertz, coating removed", "hertz_coating": "Hertz, coating half-space",
+             "extended": "extended Hertz" if case.is_coated else "Hertz"}
+    table = []
+    for key, r in rows.items():
+        if key != "extended" and not case.is_coated:
+            continue
+        row = [names[key], _um(r["delta"]), _um(r["a"]), _mpa(r["p0"])]
+        if ell:
+            row += [_um(r["r_a"]), _um(r["r_b"])]
+        table.append(row)
+    print(format_table(header, table))
+    for m in msgs:
+        print(f"warning: {m}")
+    return 0
