@@ -14,9 +14,10 @@ eq (21)'s rows for the missing parts) and report its effect.
 
 The pieces are used exactly as printed (first interval closed, others half-open on the
 left), including their jumps at breakpoints (:func:`breakpoint_jumps` lists them). Outside
-the fitted range H in [0.01, 3], the end pieces are extrapolated and a
-:class:`~coathertz.errors.FittedRangeWarning` is issued by the callers in
-:mod:`coathertz.extended`.
+the fitted ranges (H in [0.01, 3], E in [1/4, 4]) alpha is *held at its end value*: linear
+extrapolation of the end pieces turns negative (e.g. alpha_a(3) = -0.5 H + 2.8 at H > 5.6),
+which eq (17) cannot take. The callers in :mod:`coathertz.extended` issue a
+:class:`~coathertz.errors.FittedRangeWarning` whenever this happens.
 """
 
 from __future__ import annotations
@@ -36,11 +37,12 @@ Piece = tuple[float, Callable[[np.ndarray], np.ndarray]]
 
 
 def _piecewise(H: np.ndarray, breaks: Sequence[float], funcs: Sequence[Callable]) -> np.ndarray:
-    """Evaluate pieces: funcs[0] on H <= breaks[0], funcs[k] on breaks[k-1] < H <= breaks[k],
-    funcs[-1] beyond the last break (the end pieces extrapolate)."""
+    """Evaluate pieces: funcs[0] on H <= breaks[0], funcs[k] on breaks[k-1] < H <= breaks[k];
+    H is clipped to the fitted range first (alpha held at its end values)."""
     H = np.asarray(H, dtype=float)
     if np.any(~(H > 0)):
         raise CoatHertzError(f"H must be > 0 to evaluate the alpha curves, got min {np.min(H)!r}")
+    H = np.clip(H, *H_RANGE)
     idx = np.searchsorted(np.asarray(breaks), H, side="left")
     out = np.empty_like(H)
     for k, f in enumerate(funcs):
@@ -185,7 +187,7 @@ C21 = {
 }
 
 
-def _eq19_p(E, a13, a3):
+def eq19_p(E, a13, a3):
     """eq (19a)."""
     return np.select(
         [E <= 1 / 3, E < 1, E <= 3],
@@ -194,12 +196,12 @@ def _eq19_p(E, a13, a3):
     )
 
 
-def _eq19_delta_low(E, a13):
+def eq19_delta(E, a13):
     """eq (19b), E < 1 only."""
     return np.where(E <= 1 / 3, a13 - (1 / E - 3) / 39, 0.685 + (a13 - 0.685) / (3 * E))
 
 
-def _eq21(q: str, E, a13, a3):
+def eq21(q: str, E, a13, a3):
     """eq (21) for quantity q in {a, b, delta, p}."""
     C1, C2, C3, C4 = C21[q]
     high = (0.225 + E * (a3 - 0.225) / 3) if q == "delta" else (a3 + (E - 3) / C4)
@@ -246,20 +248,21 @@ class AlphaRule:
         E, H = np.broadcast_arrays(np.asarray(E, dtype=float), np.asarray(H, dtype=float))
         if np.any(~(E > 0)) or np.any(np.isinf(E)):
             raise CoatHertzError("modulus ratio E = Ec*/Es* must satisfy 0 < E < inf")
+        E = np.clip(E, *E_RANGE)  # alpha held at its end values outside [1/4, 4]
         base = "a" if quantity == "b" else quantity
         a13 = CURVES[(base, "1/3")](H)
         a3 = CURVES[(base, "3")](H)
         if self.elliptical:
-            return _eq21(quantity, E, a13, a3)
+            return eq21(quantity, E, a13, a3)
         if quantity == "p":
-            return _eq19_p(E, a13, a3)
+            return eq19_p(E, a13, a3)
         if quantity == "delta":
-            low = _eq19_delta_low(E, a13)
-            high = _eq21("delta", E, a13, a3) if self.missing == "eq21" else a3
+            low = eq19_delta(E, a13)
+            high = eq21("delta", E, a13, a3) if self.missing == "eq21" else a3
             return np.where(E < 1, low, high)
         # alpha_a (and b): missing from eq (19) altogether
         if self.missing == "eq21":
-            return _eq21(quantity, E, a13, a3)
+            return eq21(quantity, E, a13, a3)
         return np.where(E < 1, a13, a3)
 
 

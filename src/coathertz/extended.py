@@ -94,7 +94,7 @@ def _warn_range(H, E=None, *, what: str = "") -> None:
         warnings.warn(
             f"{what}H outside the fitted range [{H_RANGE[0]}, {H_RANGE[1]}] of the Appendix A "
             f"alpha curves at {n_H} point(s) (H from {H.min():.3g} to {H.max():.3g}); "
-            "the end pieces are extrapolated",
+            "alpha is held at its end value there",
             FittedRangeWarning,
             stacklevel=3,
         )
@@ -104,8 +104,8 @@ def _warn_range(H, E=None, *, what: str = "") -> None:
         if n_E:
             warnings.warn(
                 f"{what}modulus ratio E = Ec*/Es* outside the fitted range [1/4, 4] of eq (19)/(21) "
-                f"at {n_E} point(s) (E from {E.min():.3g} to {E.max():.3g}); the end pieces are "
-                "extrapolated",
+                f"at {n_E} point(s) (E from {E.min():.3g} to {E.max():.3g}); alpha is held at "
+                "its value at the end of the range",
                 FittedRangeWarning,
                 stacklevel=3,
             )
@@ -336,7 +336,8 @@ def invert_alpha(
     """
     if quantity not in ("a", "delta", "p"):
         raise CoatHertzError(f"quantity must be a, delta or p; got {quantity!r}")
-    bar, E, H, nu_c, nu_s = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (bar, E, H, nu_c, nu_s)))
+    arrays = (np.asarray(v, dtype=float) for v in (bar, E, H, nu_c, nu_s))
+    bar, E, H, nu_c, nu_s = np.broadcast_arrays(*arrays)
     if np.any(~(bar > 0)):
         raise CoatHertzError("bar values must be > 0")
     lb = np.log(bar)

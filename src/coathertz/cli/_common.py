@@ -55,7 +55,9 @@ def case_from_args(args: argparse.Namespace) -> ContactCase:
     if args.coating:
         parts = [p.strip() for p in args.coating.split(",")]
         if len(parts) != 3:
-            raise CoatHertzError(f"--coating expects 'E,nu,h' (e.g. '380 GPa,0.17,40 um'), got {args.coating!r}")
+            raise CoatHertzError(
+                f"--coating expects 'E,nu,h' (e.g. '380 GPa,0.17,40 um'), got {args.coating!r}"
+            )
         cmat = _material_flag(",".join(parts[:2]), "--coating")
         coating = Coating(cmat, parse_quantity(parts[2], "length", name="--coating h"))
     return ContactCase(Body(indenter, None, R, R), Body(substrate, coating), W)

@@ -20,7 +20,9 @@ HELP = "closed-form predictions: Hertz without coating, coating-only Hertz, exte
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_case_arguments(parser)
-    parser.add_argument("--alpha", help="explicit alpha values 'a=..,p=..,delta=..' (e.g. read from figure 5)")
+    parser.add_argument(
+        "--alpha", help="explicit alpha values 'a=..,p=..,delta=..' (e.g. read from figure 5)"
+    )
     parser.add_argument("--alpha-rule", default="paper", choices=["paper", "eq21-fill"],
                         help="how the parts of eq (19) missing from the copy are filled (NOTES.md)")
     parser.add_argument("--json", action="store_true", help="machine-readable output")
