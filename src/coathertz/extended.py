@@ -92,7 +92,7 @@ def _warn_range(H, E=None, *, what: str = "") -> None:
     n_H = int(np.count_nonzero((H < H_RANGE[0] * (1 - 1e-9)) | (H > H_RANGE[1] * (1 + 1e-9))))
     if n_H:
         warnings.warn(
-            f"{what}H outside the fitted range [{H_RANGE[0]}, {H_RANGE[1]}] of the Appendix A "
+            f"{what}H outside the fitted range [{H_RANGE[0]:g}, {H_RANGE[1]:g}] of the Appendix A "
             f"alpha curves at {n_H} point(s) (H from {H.min():.3g} to {H.max():.3g}); "
             "alpha is held at its end value there",
             FittedRangeWarning,

@@ -85,7 +85,10 @@ def test_toml_roundtrip_all_examples():
 
 def test_toml_errors(tmp_path):
     p = tmp_path / "c.toml"
-    p.write_text('W = "1 N"\n[body1]\nmaterial = "rigid"\nR = "10 mm"\n[body2]\nmaterial = { E = 200, nu = 0.3 }\n')
+    p.write_text(
+        'W = "1 N"\n[body1]\nmaterial = "rigid"\nR = "10 mm"\n'
+        '[body2]\nmaterial = { E = 200, nu = 0.3 }\n'
+    )
     with pytest.raises(CoatHertzError, match=r"body2\.material\.E = 200 has no unit"):
         load_case(p)
     p.write_text('W = "1 N"\nload = 3\n')
