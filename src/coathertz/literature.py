@@ -3,9 +3,13 @@
 Each function states its source, the configuration it assumes and its stated validity range;
 outside that range it still evaluates but issues :class:`~coathertz.errors.FittedRangeWarning`.
 
-* eq (8): Vorovich & Ustinov (1959), thick layer (h/a > 1.5) **bonded** to a rigid base,
-  rigid parabolic indenter. Normalised by the coating-half-space Hertz values (a0c, ...),
-  series in H = h/a0c. The paper quotes it with nu_c = 0.5 (figure 7).
+* eq (8): Vorovich & Ustinov (1959), thick layer (h/a > 1.5) on a rigid base, rigid parabolic
+  indenter; normalised by the coating-half-space Hertz values (a0c, ...), series in H = h/a0c.
+  The paper quotes it with nu_c = 0.5 (figure 7) and describes it as the bonded case. Our FFT
+  solver with both interfaces (``tests/fft/test_literature_rigid.py``) shows the series is that
+  of a layer **resting without friction** on the base: its 1/H coefficient of delta, 0.504,
+  matches the frictionless layer's 0.496 (independent of nu, as the series is), while a bonded
+  incompressible layer has 0.751; a and p agree with the frictionless solution to ~1e-4 at H >= 3.
 * eq (9): Keer (1964), same with an elastic indenter, C_E = E2*/(Ec* + E2*).
 * eq (10): Matthewson (1981), thin (h/a < 1/2) incompressible (nu_c = 1/2) layer **bonded**
   to a rigid base, rigid sphere; tau = h/a.
@@ -48,7 +52,8 @@ def _warn_outside(name: str, x: np.ndarray, lo: float, hi: float, source: str) -
 def vorovich_ustinov(H, *, warn: bool = True):
     """Vorovich & Ustinov series, eqs (8a)-(8c): ``(delta_bar, a_bar, p_bar)`` against H = h/a0c.
 
-    Stated for thick layers, h/a > 1.5 (checked here as H > 1.5, since a ~ a0c there).
+    Stated for thick layers, h/a > 1.5 (checked here as H > 1.5, since a ~ a0c there). It
+    matches a layer resting without friction on a rigid base (see the module docstring).
     """
     H = _arr("H", H)
     if warn:

@@ -1,0 +1,91 @@
+"""Contact size and peak pressure from a discrete pressure field.
+
+* :func:`area_radius` -- the paper's ``a_num = sqrt(S / pi)`` (Section 3), ``S`` the area of
+  the cells carrying pressure. A cell is in or out, so the error scatters: measured at
+  n = 32..384 it is +3e-4..+1.4e-2, biased positive, fitted order 0.7-1.4.
+* :func:`moment_axes` -- semi-axes of an elliptical contact from the second moments of the
+  contact set, scaled so that ``pi r_a r_b = S``.
+* :func:`edge_fit_axes` -- the more accurate estimator: near a smooth edge the pressure goes
+  like a square root, so ``p^2`` is a smooth function of ``s = (x/r_a)^2 + (y/r_b)^2``,
+  vanishing at the edge. A quadratic in ``s`` fitted by least squares to ``p^2`` on the
+  contact cells of an outer band (``EDGE_BAND_CELLS`` cells wide, at least
+  ``EDGE_BAND_MIN`` of the radius) and its root give the edge; for Hertz, ``p^2`` is exactly
+  linear in ``s``. Measured (homogeneous sphere against Hertz; E = 3, H = 0.3 and
+  E = 1/3, H = 1 against n = 768): |error| <= 3e-4 for n >= 64 and <= 1e-4 at n >= 128
+  except one case (2.7e-4), against up to 1.4e-2 for ``a_num``; the error still scatters
+  (fitted orders 1.8, 4.0 and 3.0 over n = 32..384, with scatter). The fitted edge is kept
+  within one cell of the moment/area estimate (the contact set fixes the edge that well).
+* :func:`peak_pressure` -- ``p0 = max p`` (the cell at the origin is a collocation point).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from coathertz.fft.grid import Grid
+
+EDGE_BAND_CELLS = 8
+EDGE_BAND_MIN = 0.25
+
+
+def contact_area(p: np.ndarray, grid: Grid) -> float:
+    """``S`` = area of the cells with ``p > 0`` [m^2]."""
+    return float(np.count_nonzero(p > 0)) * grid.cell_area
+
+
+def area_radius(p: np.ndarray, grid: Grid) -> float:
+    """``a_num = sqrt(S / pi)`` (Section 3)."""
+    return math.sqrt(contact_area(p, grid) / math.pi)
+
+
+def peak_pressure(p: np.ndarray) -> float:
+    return float(np.max(p))
+
+
+def moment_axes(p: np.ndarray, grid: Grid) -> tuple[float, float]:
+    """``(r_a, r_b)`` along x and y from the second moments of the contact set (area-exact)."""
+    m = p > 0
+    if not np.any(m):
+        return (0.0, 0.0)
+    X, Y = np.meshgrid(grid.x, grid.y)
+    # uniform ellipse: <x^2> = r_a^2 / 4; include the cell's own variance dx^2/12
+    ra = 2.0 * math.sqrt(max(np.mean(X[m] ** 2) + grid.dx**2 / 12, 0.0))
+    rb = 2.0 * math.sqrt(max(np.mean(Y[m] ** 2) + grid.dy**2 / 12, 0.0))
+    S = contact_area(p, grid)
+    k = math.sqrt(S / (math.pi * ra * rb))
+    return (ra * k, rb * k)
+
+
+def edge_fit_axes(p: np.ndarray, grid: Grid, r_a: float, r_b: float) -> tuple[float, float]:
+    """Semi-axes from a fit of ``p^2`` near the edge (see module docstring).
+
+    ``r_a, r_b`` are first estimates (e.g. :func:`moment_axes`) that fix the shape; the result
+    rescales them by the fitted root ``s*`` of ``p^2(s)``. Falls back to the input when the band
+    holds too few cells.
+    """
+    if r_a <= 0 or r_b <= 0:
+        return (r_a, r_b)
+    X, Y = np.meshgrid(grid.x, grid.y)
+    s = (X / r_a) ** 2 + (Y / r_b) ** 2
+    cells = min(r_a / grid.dx, r_b / grid.dy)
+    w = max(EDGE_BAND_CELLS / cells, EDGE_BAND_MIN)
+    band = (p > 0) & (s >= (1.0 - min(w, 0.9)) ** 2)
+    if np.count_nonzero(band) < 6:
+        return (r_a, r_b)
+    sb, pb = s[band] - 1.0, p[band] ** 2
+    pb = pb / pb.max()
+    A = np.stack([sb * sb, sb, np.ones_like(sb)], axis=1)
+    (c2, c1, c0), *_ = np.linalg.lstsq(A, pb, rcond=None)
+    roots = np.roots([c2, c1, c0]) if abs(c2) > 1e-12 * abs(c1) else np.array([-c0 / c1])
+    roots = roots[np.isreal(roots)].real
+    if roots.size == 0:
+        return (r_a, r_b)
+    ds = roots[np.argmin(np.abs(roots))]
+    k = math.sqrt(max(1.0 + ds, 0.0))
+    # the contact set fixes the edge to within a cell: a fit outside that (a pressure that is
+    # not square-root-like on the grid scale, e.g. thin incompressible layers) is clipped
+    lim = 1.0 / cells
+    k = min(max(k, 1.0 - lim), 1.0 + lim)
+    return (r_a * k, r_b * k)

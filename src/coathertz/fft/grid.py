@@ -1,0 +1,135 @@
+"""Uniform computational grids for the DC-FFT solver, chosen from the Hertz estimate.
+
+One resolution knob: ``n``, the number of cells along each side of the (rectangular) domain.
+The domain is centred on the first point of contact and its half-widths are
+``margin * (estimated semi-axis)``, so that the contact radius gets ``n / (2 margin)`` cells.
+
+Estimate of the semi-axes
+-------------------------
+A coated contact on elastic substrates normally lies between the Hertz contacts of its two limits
+(coatings removed, ``a0s``; coatings as half-spaces, ``a0c``), so the grid is first sized on the
+larger of the two; all ``H`` of one material pair then share a grid (fast sweeps). On a rigid
+substrate a thin layer gives a contact much smaller than ``a0c``; the solver therefore checks
+the computed contact (``FFTMethod(adapt=True)``) and re-grids on it when its extent is less than
+``REFIT_BELOW`` of the estimated semi-axis or when it comes within two cells of the boundary
+(then the estimate grows 1.5x): the domain contains the contact with margin at every ``H``,
+and the contact radius always gets at least ``REFIT_BELOW n / (2 margin)`` cells (25 at the
+defaults).
+
+Anisotropic spacing
+-------------------
+``spacing_ratio = dy/dx``. ``None`` gives square cells for circular contacts and, for
+ellipses, ``dy/dx = r_b/r_a`` (the same number of cells across both semi-axes); the paper's
+elliptical study uses ``dy = dx/3`` (``spacing_ratio=1/3``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from coathertz.errors import CoatHertzError
+
+N_MIN, N_MAX = 16, 4096
+DEFAULT_N = 128
+DEFAULT_MARGIN = 1.25
+REFIT_BELOW = 0.5
+
+
+@dataclass(frozen=True)
+class Grid:
+    """``nx x ny`` cells of ``dx x dy`` [m]; cell ``(nx//2, ny//2)`` is centred on the origin."""
+
+    nx: int
+    ny: int
+    dx: float
+    dy: float
+
+    def __post_init__(self) -> None:
+        for name in ("nx", "ny"):
+            v = getattr(self, name)
+            if not isinstance(v, int | np.integer) or isinstance(v, bool) or not (
+                N_MIN <= v <= N_MAX
+            ):
+                raise CoatHertzError(
+                    f"grid size {name} must be an integer in [{N_MIN}, {N_MAX}], got {v!r}"
+                )
+        for name in ("dx", "dy"):
+            v = getattr(self, name)
+            if not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
+                raise CoatHertzError(f"grid spacing {name} must be finite and > 0 [m], got {v!r}")
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        return (self.ny, self.nx)
+
+    @property
+    def padded_shape(self) -> tuple[int, int]:
+        return (2 * self.ny, 2 * self.nx)
+
+    @property
+    def cell_area(self) -> float:
+        return self.dx * self.dy
+
+    @property
+    def half_widths(self) -> tuple[float, float]:
+        """Distance from the origin to the nearest domain edge along x and y [m]."""
+        return ((self.nx // 2 - 0.5) * self.dx, (self.ny - self.ny // 2 - 0.5) * self.dy)
+
+    @cached_property
+    def x(self) -> np.ndarray:
+        return (np.arange(self.nx) - self.nx // 2) * self.dx
+
+    @cached_property
+    def y(self) -> np.ndarray:
+        return (np.arange(self.ny) - self.ny // 2) * self.dy
+
+    def key(self) -> tuple:
+        return (self.nx, self.ny, float(self.dx), float(self.dy))
+
+    def describe(self) -> dict:
+        return {"nx": self.nx, "ny": self.ny, "dx": self.dx, "dy": self.dy}
+
+
+def check_n(n) -> int:
+    """Validate the resolution knob."""
+    if isinstance(n, bool) or not isinstance(n, int | np.integer) or not (N_MIN <= n <= N_MAX):
+        raise CoatHertzError(f"grid n must be an integer in [{N_MIN}, {N_MAX}], got {n!r}")
+    return int(n)
+
+
+def grid_for_axes(
+    r_a: float,
+    r_b: float,
+    n: int = DEFAULT_N,
+    margin: float = DEFAULT_MARGIN,
+    spacing_ratio: float | None = None,
+) -> Grid:
+    """Grid of ``n x n`` cells whose domain contains the ellipse ``r_a x r_b`` with ``margin``.
+
+    Parameters
+    ----------
+    r_a, r_b
+        Estimated semi-axes along x and y [m].
+    n
+        Cells along each side (resolution knob), ``16 <= n <= 4096``.
+    margin
+        Domain half-width over semi-axis, ``margin > 1``.
+    spacing_ratio
+        ``dy/dx``; ``None``: ``r_b/r_a`` (square cells for circles).
+    """
+    n = check_n(n)
+    if not (isinstance(margin, int | float) and 1.0 < margin <= 10.0):
+        raise CoatHertzError(f"grid margin must satisfy 1 < margin <= 10, got {margin!r}")
+    for name, v in (("r_a", r_a), ("r_b", r_b)):
+        if not (math.isfinite(v) and v > 0):
+            raise CoatHertzError(f"estimated semi-axis {name} must be finite and > 0, got {v!r}")
+    ratio = r_b / r_a if spacing_ratio is None else spacing_ratio
+    if not (isinstance(ratio, int | float) and 1e-3 <= ratio <= 1e3):
+        raise CoatHertzError(f"spacing_ratio dy/dx must be in [1e-3, 1e3], got {spacing_ratio!r}")
+    half = n / 2 - 0.5
+    dx = margin * max(r_a, r_b / ratio) / half
+    return Grid(n, n, dx, dx * ratio)

@@ -1,0 +1,295 @@
+"""The DC-FFT method: :class:`FFTMethod` (a :class:`coathertz.methods.Method`) and batch sweeps.
+
+``FFTMethod(n=128).solve(case)`` builds the grid from the Hertz estimate
+(:mod:`coathertz.fft.grid`), the cell influence coefficients of both bodies from their FRFs
+(:mod:`coathertz.fft.influence`; compliances add), solves the contact by Polonsky & Keer's CG
+with load control (:mod:`coathertz.fft.solver`) and measures it
+(:mod:`coathertz.fft.estimators`).
+
+For sweeps use :meth:`FFTMethod.solve_many` (or :func:`solve_many`): cases sharing a grid (in the
+fig-3 study every ``H`` of one modulus ratio does: the grid depends only on ``a0s`` and ``a0c``)
+are solved as one batch with stacked arrays, and the coefficient transforms are cached per
+``(body, grid, interface)``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+from collections import OrderedDict
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import asdict, dataclass
+from typing import Any
+
+import numpy as np
+
+from coathertz.case import ContactCase
+from coathertz.errors import CoatHertzError
+from coathertz.fft import estimators
+from coathertz.fft.frf import INTERFACES
+from coathertz.fft.grid import DEFAULT_MARGIN, DEFAULT_N, REFIT_BELOW, Grid, check_n, grid_for_axes
+from coathertz.fft.influence import body_coefficients, circulant
+from coathertz.fft.solver import Convolver, get_backend, polonsky_keer
+from coathertz.hertz import pressure_elliptical
+from coathertz.materials import Body
+from coathertz.results import ContactResult
+
+_CACHE: OrderedDict = OrderedDict()
+_CACHE_SIZE = 64
+INIT_SCALE = 0.8
+
+
+def coefficients(body: Body, grid: Grid, interface: str = "bonded") -> np.ndarray:
+    """Quadrant coefficients of one body on ``grid``, cached per (body, grid, interface)."""
+    key = (body, grid.key(), interface)
+    if key in _CACHE:
+        _CACHE.move_to_end(key)
+        return _CACHE[key]
+    K = body_coefficients(body, grid.nx, grid.ny, grid.dx, grid.dy, interface)
+    _CACHE[key] = K
+    if len(_CACHE) > _CACHE_SIZE:
+        _CACHE.popitem(last=False)
+    return K
+
+
+def case_coefficients(case: ContactCase, grid: Grid, interface: str = "bonded") -> np.ndarray:
+    """Wrap-around (``2ny x 2nx``) coefficients of the pair: the bodies' compliances add."""
+    q = coefficients(case.body1, grid, interface) + coefficients(case.body2, grid, interface)
+    return circulant(q)
+
+
+def initial_gap(case: ContactCase, grid: Grid) -> np.ndarray:
+    """``g0 = x^2/(2 Rx) + y^2/(2 Ry)`` (principal relative radii, x along Rx)."""
+    gx = 0.0 if math.isinf(case.Rx) else grid.x**2 / (2 * case.Rx)
+    gy = 0.0 if math.isinf(case.Ry) else grid.y**2 / (2 * case.Ry)
+    return np.zeros(grid.shape) + gx + np.asarray(gy)[:, None] * np.ones((1, grid.nx))
+
+
+def estimate_axes(case: ContactCase) -> tuple[float, float]:
+    """Larger of the Hertz semi-axes with coatings removed and as half-spaces [m]."""
+    cands = [case.hertz_s, case.hertz_c]
+    ra = max(float(h.r_a0) for h in cands if float(h.r_a0) > 0)
+    rb = max(float(h.r_b0) for h in cands if float(h.r_b0) > 0)
+    return ra, rb
+
+
+@dataclass(frozen=True)
+class FFTMethod:
+    """DC-FFT contact solver for coated bodies (the paper's numerical method).
+
+    Parameters
+    ----------
+    n
+        Resolution knob: cells along each side of the domain (``16 <= n <= 4096``).
+    margin
+        Domain half-width over the estimated semi-axis (> 1).
+    spacing_ratio
+        ``dy/dx``; ``None``: ``r_b/r_a`` (square cells for circles). The paper's ellipses: 1/3.
+    interface
+        ``bonded`` (eq 13, the paper's model) or ``frictionless`` (layer resting on its
+        substrate without friction; transfer-matrix FRF).
+    tol, max_iter
+        CG tolerance on ``sum |dp| dA / W`` (P&K's measure) and iteration cap. At the default
+        1e-6 the results differ from those at 1e-12 by < 5e-8 in delta and < 1e-5 in p0 with
+        the same contact set (measured on four coated cases at n = 128), far below the
+        discretisation error.
+    precondition
+        CG direction preconditioned by ``|k|`` (:func:`~coathertz.fft.solver.polonsky_keer`);
+        off by default: it fails on extremely thin incompressible layers on a rigid base.
+    adapt
+        Re-grid on the computed contact when it fills less than ``REFIT_BELOW`` of the
+        estimate or touches the margin (see :mod:`coathertz.fft.grid`).
+    radius
+        Estimator reported as ``a``: ``edge-fit`` (default, more accurate) or ``area``
+        (the paper's ``sqrt(S/pi)``); both are always in ``meta``.
+    backend, workers
+        ``numpy`` (scipy.fft with ``workers`` threads) or ``cupy``.
+    keep_fields
+        Return the pressure and displacement arrays in ``ContactResult.fields``.
+    """
+
+    n: int = DEFAULT_N
+    margin: float = DEFAULT_MARGIN
+    spacing_ratio: float | None = None
+    interface: str = "bonded"
+    tol: float = 1e-6
+    max_iter: int = 2000
+    precondition: bool = False
+    adapt: bool = True
+    radius: str = "edge-fit"
+    backend: str = "numpy"
+    workers: int = -1
+    keep_fields: bool = True
+    name: str = "fft"
+
+    def __post_init__(self) -> None:
+        check_n(self.n)
+        if self.interface not in INTERFACES:
+            raise CoatHertzError(f"interface must be one of {INTERFACES}, got {self.interface!r}")
+        if self.radius not in ("edge-fit", "area"):
+            raise CoatHertzError(f"radius must be 'edge-fit' or 'area', got {self.radius!r}")
+        if not (isinstance(self.tol, float | int) and 0 < self.tol < 1e-2):
+            raise CoatHertzError(f"tol must satisfy 0 < tol < 1e-2, got {self.tol!r}")
+        get_backend(self.backend, self.workers)
+
+    # Method protocol ------------------------------------------------------------------
+    def settings(self) -> Mapping[str, Any]:
+        d = asdict(self)
+        for k in ("name", "backend", "workers", "keep_fields"):
+            d.pop(k)
+        return d
+
+    def supports(self, case: ContactCase) -> bool:
+        """Any point contact: finite relative radii (a non-conforming contact)."""
+        return math.isfinite(case.Rx) and math.isfinite(case.Ry)
+
+    def grid_for(self, case: ContactCase, axes: tuple[float, float] | None = None) -> Grid:
+        ra, rb = estimate_axes(case) if axes is None else axes
+        return grid_for_axes(ra, rb, self.n, self.margin, self.spacing_ratio)
+
+    def solve(self, case: ContactCase, grid: Grid | None = None) -> ContactResult:
+        """Solve one case (re-gridding if ``adapt``); raises ConvergenceError on failure."""
+        return self.solve_many([case], grid=grid)[0]
+
+    def solve_many(
+        self,
+        cases: Sequence[ContactCase],
+        grid: Grid | None = None,
+        batch: int = 1,
+        warm_start: bool = True,
+    ) -> list[ContactResult]:
+        """Solve many cases efficiently.
+
+        Cases are grouped by grid (cases whose Hertz estimates coincide share one, e.g. all
+        ``H`` of one modulus ratio). Within a group, ``batch = 1`` solves them in the given
+        order, each starting from the previous pressure field (``warm_start``: order a sweep by
+        ``H``); ``batch > 1`` stacks that many cases into one array problem (pays off on a GPU,
+        not on 2 CPU cores). Coefficients are cached per (body, grid, interface).
+        """
+        if not (isinstance(batch, int) and batch >= 1):
+            raise CoatHertzError(f"batch must be an integer >= 1, got {batch!r}")
+        for c in cases:
+            if not self.supports(c):
+                raise CoatHertzError("FFT method needs a point contact (finite Rx and Ry)")
+        grids = [grid or self.grid_for(c) for c in cases]
+        groups: dict[tuple, list[int]] = {}
+        for i, g in enumerate(grids):
+            groups.setdefault(g.key(), []).append(i)
+        out: list[ContactResult | None] = [None] * len(cases)
+        for idx in groups.values():
+            p_prev = None
+            for s in range(0, len(idx), batch):
+                chunk = idx[s : s + batch]
+                res = self._solve_batch([cases[i] for i in chunk], grids[chunk[0]], p_prev)
+                if warm_start and batch == 1:
+                    p_prev = res[0].fields["pressure"]
+                for i, r in zip(chunk, res, strict=True):
+                    out[i] = r if self.keep_fields else dataclasses.replace(r, fields={})
+        if self.adapt and grid is None:
+            for i, r in enumerate(out):
+                g = grids[i]
+                for _ in range(4):
+                    new = self._refit(r, g)
+                    if new is None:
+                        break
+                    g = new
+                    r = self._solve_batch([cases[i]], g)[0]
+                out[i] = r if self.keep_fields else dataclasses.replace(r, fields={})
+        return out  # type: ignore[return-value]
+
+    # internals ------------------------------------------------------------------------
+    def _refit(self, r: ContactResult, g: Grid) -> Grid | None:
+        ext_x, ext_y = r.meta["extent"]
+        hx, hy = g.half_widths
+        touching = ext_x > hx - 2 * g.dx or ext_y > hy - 2 * g.dy
+        small = max(ext_x / hx, ext_y / hy) < REFIT_BELOW / self.margin
+        if not (touching or small):
+            return None
+        ra = max(r.r_a, ext_x) * (1.5 if touching else 1.0)
+        rb = max(r.r_b, ext_y) * (1.5 if touching else 1.0)
+        ratio = self.spacing_ratio if self.spacing_ratio is not None else g.dy / g.dx
+        return grid_for_axes(ra, rb, self.n, self.margin, ratio)
+
+    def _solve_batch(
+        self, cases: list[ContactCase], grid: Grid, p_prev: np.ndarray | None = None
+    ) -> list[ContactResult]:
+        t0 = time.perf_counter()
+        be = get_backend(self.backend, self.workers)
+        kern = np.stack([case_coefficients(c, grid, self.interface) for c in cases])
+        g0 = np.stack([initial_gap(c, grid) for c in cases])
+        W = np.array([c.W for c in cases])
+        X, Y = np.meshgrid(grid.x, grid.y)
+        p_init = []
+        for c in cases:
+            ra, rb = estimate_axes(c)
+            if p_prev is not None:
+                p_init.append(p_prev)
+            else:
+                p_init.append(pressure_elliptical(X, Y, INIT_SCALE * ra, INIT_SCALE * rb, 1.0))
+        t1 = time.perf_counter()
+        conv = Convolver(kern, be, spacing=(grid.dy, grid.dx) if self.precondition else None)
+        sol = polonsky_keer(
+            conv, g0, W, grid.cell_area, tol=self.tol, max_iter=self.max_iter,
+            p_init=np.stack(p_init), precondition=self.precondition,
+        )
+        t_setup = t1 - t0
+        per_case = (time.perf_counter() - t0) / len(cases)
+        results = []
+        for k, c in enumerate(cases):
+            p = sol.p[k]
+            a_num = estimators.area_radius(p, grid)
+            ra_m, rb_m = estimators.moment_axes(p, grid)
+            if c.is_circular and self.spacing_ratio in (None, 1.0):
+                ra_m = rb_m = a_num
+            ra_f, rb_f = estimators.edge_fit_axes(p, grid, ra_m, rb_m)
+            m = p > 0
+            ext_x = float(np.max(np.abs(X[m]))) + grid.dx / 2 if np.any(m) else 0.0
+            ext_y = float(np.max(np.abs(Y[m]))) + grid.dy / 2 if np.any(m) else 0.0
+            if self.radius == "edge-fit":
+                ra, rb = ra_f, rb_f
+            else:
+                ra, rb = ra_m, rb_m
+            meta = {
+                "grid": grid.describe(),
+                "iterations": int(sol.iterations[k]),
+                "eps": float(sol.eps[k]),
+                "residual": float(sol.residual[k]),
+                "penetration": float(sol.penetration[k]),
+                "convolutions_batch": int(sol.convolutions),
+                "batch": len(cases),
+                "wall_time": per_case,
+                "setup_time_batch": t_setup,
+                "a_num": a_num,
+                "area": estimators.contact_area(p, grid),
+                "r_a_num": ra_m,
+                "r_b_num": rb_m,
+                "a_fit": math.sqrt(ra_f * rb_f),
+                "r_a_fit": ra_f,
+                "r_b_fit": rb_f,
+                "extent": [ext_x, ext_y],
+                "settings": dict(self.settings()),
+            }
+            fields = {"pressure": p, "displacement": sol.u[k], "x": grid.x, "y": grid.y}
+            results.append(
+                ContactResult(
+                    self.name,
+                    float(sol.delta[k]),
+                    math.sqrt(ra * rb),
+                    estimators.peak_pressure(p),
+                    c.W,
+                    ra,
+                    rb,
+                    meta,
+                    fields,
+                )
+            )
+        return results
+
+
+def solve_many(
+    cases: Iterable[ContactCase], method: FFTMethod | None = None, **settings: Any
+) -> list[ContactResult]:
+    """Convenience: ``(method or FFTMethod(**settings)).solve_many(list(cases))``."""
+    m = method or FFTMethod(**settings)
+    return m.solve_many(list(cases))
