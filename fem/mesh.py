@@ -1,0 +1,210 @@
+"""Graded axisymmetric mesh of a (coated) half-space, built with scikit-fem alone.
+
+The body occupies ``0 <= r <= L`` and ``-D <= z <= 0`` (``z`` points out of the body, the
+surface is ``z = 0``, the axis of symmetry ``r = 0``). The mesh is a tensor product of two
+graded 1-D grids, so the coating/substrate interface ``z = -h`` is a line of element edges
+and the mesh is conforming:
+
+* in ``r``: uniform spacing ``s0 = a_ref / n_a`` on ``0 <= r <= r_fine * a_ref`` (the contact
+  zone and its edge), then geometric growth by ``growth`` per element up to ``L``;
+* in ``z`` (depth ``t = -z``): the coating gets ``max(n_coat, ceil(h / s0))`` elements (at least
+  ``n_coat`` even for ``H = 0.01``), then the spacing relaxes to ``s0`` down to ``t_fine``,
+  then grows geometrically to ``D``.
+
+``a_ref`` is the predicted contact radius; :func:`coathertz.fem.method.FEMMethod.solve`
+rebuilds the mesh around the computed radius if that falls outside the fine zone.
+Elements are 4-node quadrilaterals (``MeshQuad``) to be used with the 9-node Q2 element.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from skfem import MeshQuad
+
+from coathertz.errors import CoatHertzError
+
+
+@dataclass(frozen=True)
+class MeshSpec:
+    """Mesh density knobs (all dimensionless, relative to the reference contact radius).
+
+    Parameters
+    ----------
+    n_a
+        Elements across the contact radius in the fine zone (``s0 = a_ref / n_a``).
+    r_fine
+        Radial extent of the fine zone in units of ``a_ref``.
+    t_fine
+        Depth of the fine surface layer in units of ``a_ref``.
+    growth
+        Geometric growth factor of the element size outside the fine zone.
+    L
+        Domain size (radius and depth) in units of ``max(a_ref, h)``.
+    n_coat
+        Minimum number of elements through the coating.
+    edge
+        Thin coatings: element size at the contact edge is ``edge * h / n_a`` if smaller than
+        ``a_ref / n_a`` (so ``n_a / edge`` elements per coating thickness there). Measured:
+        without it the contact radius of H = 0.03 coatings erred by 0.3-0.5 % at n_a = 40.
+    """
+
+    n_a: int = 40
+    r_fine: float = 1.5
+    t_fine: float = 0.5
+    growth: float = 1.3
+    L: float = 40.0
+    n_coat: int = 4
+    edge: float = 6.0
+
+    def __post_init__(self) -> None:
+        if not (isinstance(self.n_a, int | np.integer) and 4 <= self.n_a <= 2000):
+            raise CoatHertzError(f"n_a (elements across a) must be an integer in [4, 2000], got {self.n_a!r}")
+        if not (1.05 <= self.r_fine <= 5.0):
+            raise CoatHertzError(f"r_fine must be in [1.05, 5] (units of a), got {self.r_fine!r}")
+        if not (0.0 < self.t_fine <= 5.0):
+            raise CoatHertzError(f"t_fine must be in (0, 5] (units of a), got {self.t_fine!r}")
+        if not (1.0 < self.growth <= 2.0):
+            raise CoatHertzError(f"growth must be in (1, 2], got {self.growth!r}")
+        if not (5.0 <= self.L <= 1e5):
+            raise CoatHertzError(f"L must be in [5, 1e5] (units of max(a, h)), got {self.L!r}")
+        if not (0.5 <= self.edge <= 1e3):
+            raise CoatHertzError(f"edge must be in [0.5, 1000], got {self.edge!r}")
+        if not (isinstance(self.n_coat, int | np.integer) and 1 <= self.n_coat <= 100):
+            raise CoatHertzError(f"n_coat must be an integer in [1, 100], got {self.n_coat!r}")
+
+
+#: Named mesh levels used by the CLI and the verification studies.
+MESH_LEVELS: dict[str, MeshSpec] = {
+    "coarse": MeshSpec(n_a=20, growth=1.4),
+    "default": MeshSpec(n_a=40, growth=1.3),
+    "fine": MeshSpec(n_a=100, growth=1.2),
+}
+
+
+def mesh_spec(level: str | MeshSpec) -> MeshSpec:
+    """The :class:`MeshSpec` named ``level`` (``coarse``, ``default``, ``fine``) or ``level`` itself."""
+    if isinstance(level, MeshSpec):
+        return level
+    if level not in MESH_LEVELS:
+        raise CoatHertzError(f"mesh level must be one of {sorted(MESH_LEVELS)}, got {level!r}")
+    return MESH_LEVELS[level]
+
+
+def graded(start: float, stop: float, s_first: float, growth: float, s_max: float = math.inf) -> np.ndarray:
+    """Points from ``start`` to ``stop`` (both included) whose spacing starts near ``s_first``
+    and grows by ``growth`` per interval, capped at ``s_max``; rescaled to end exactly at ``stop``."""
+    if stop <= start:
+        return np.array([start])
+    pts = [start]
+    s = s_first
+    while pts[-1] < stop:
+        pts.append(pts[-1] + s)
+        s = min(s * growth, s_max)
+    x = np.array(pts)
+    if len(x) > 2 and (x[-1] - stop) > 0.5 * (x[-1] - x[-2]):
+        x = x[:-1]  # drop the overshooting point, stretch the rest slightly
+    return start + (x - start) * (stop - start) / (x[-1] - start)
+
+
+def _join(*parts: np.ndarray) -> np.ndarray:
+    out = parts[0]
+    for p in parts[1:]:
+        out = np.concatenate([out, p[1:]])
+    return out
+
+
+@dataclass(frozen=True)
+class LayeredMesh:
+    """The mesh with its geometry: regions, fine zone and outer boundary.
+
+    Attributes
+    ----------
+    mesh
+        The scikit-fem quadrilateral mesh, coordinates ``(r, z)``.
+    coating, substrate
+        Element indices of the two regions (``coating`` empty for an uncoated body).
+    a_ref, h, L, D
+        Reference contact radius, coating thickness, domain radius and depth [m].
+    r_fine
+        Radius of the fine zone [m]: contact candidates live at ``r <= r_fine``.
+    rigid_base
+        True if the bottom ``z = -D = -h`` is bonded to a rigid substrate.
+    """
+
+    mesh: MeshQuad
+    coating: np.ndarray
+    substrate: np.ndarray
+    a_ref: float
+    h: float
+    L: float
+    D: float
+    r_fine: float
+    rigid_base: bool
+    spec: MeshSpec
+
+    @property
+    def n_elements(self) -> int:
+        return int(self.mesh.t.shape[1])
+
+
+def edge_band(a_ref: float, h: float, spec: MeshSpec) -> tuple[float, float]:
+    """Spacing ``s_e = min(s0, edge * h / n_a)`` at the contact edge and the band half-width
+    ``w = min(0.15 a_ref, max(0.05 a_ref, 5 h))`` (only used when ``s_e < s0``)."""
+    s0 = a_ref / spec.n_a
+    s_e = min(s0, spec.edge * h / spec.n_a) if h > 0 else s0
+    return s_e, min(0.15 * a_ref, max(0.05 * a_ref, 5.0 * h))
+
+
+def build_mesh(a_ref: float, h: float, spec: MeshSpec, rigid_base: bool = False) -> LayeredMesh:
+    """Graded tensor-product mesh for a contact of radius about ``a_ref`` on a coating of
+    thickness ``h`` (0: homogeneous body) over an elastic (or, ``rigid_base``, rigid) substrate."""
+    if not (a_ref > 0 and math.isfinite(a_ref)):
+        raise CoatHertzError(f"a_ref must be a finite length > 0, got {a_ref!r}")
+    if not (h >= 0 and math.isfinite(h)):
+        raise CoatHertzError(f"h must be a finite length >= 0, got {h!r}")
+    if rigid_base and h <= 0:
+        raise CoatHertzError("a rigid substrate needs a coating of thickness h > 0")
+    s0 = a_ref / spec.n_a
+    q = spec.growth
+    L = spec.L * max(a_ref, h)
+    r_f = spec.r_fine * a_ref
+    s_e, w = edge_band(a_ref, h, spec)
+    if s_e < s0:
+        # thin coating: the pressure edge has a boundary layer of width ~h; resolve it with
+        # spacing s_e in the band |r - a_ref| <= w, grading back to s0 on both sides
+        left = (a_ref - w) - graded(0.0, a_ref - w, s_e * q, q, s0)[::-1]
+        band = np.linspace(a_ref - w, a_ref + w, round(2 * w / s_e) + 1)
+        right = graded(a_ref + w, r_f, s_e * q, q, s0)
+        r_fine = _join(left, band, right)
+    else:
+        r_fine = np.linspace(0.0, r_f, round(r_f / s0) + 1)
+    r = _join(r_fine, graded(r_f, L, (r_fine[-1] - r_fine[-2]) * q, q))
+
+    t_f = spec.t_fine * a_ref
+    if h > 0:
+        n_c = max(spec.n_coat, math.ceil(min(h, t_f) / min(s0, s_e) - 1e-9))
+        if h <= t_f:
+            t = np.linspace(0.0, h, n_c + 1)
+            below = h
+            if not rigid_base:
+                t = _join(t, graded(h, t_f, min(h / n_c * q, s0), q, s0))
+                below = t_f
+        else:
+            t = _join(np.linspace(0.0, t_f, round(t_f / s0) + 1), graded(t_f, h, s0 * q, q))
+            below = h
+        D = h if rigid_base else L
+        if D > below:
+            s_last = t[-1] - t[-2]
+            t = _join(t, graded(below, D, s_last * q, q))
+    else:
+        D = L
+        t = _join(np.linspace(0.0, t_f, round(t_f / s0) + 1), graded(t_f, D, s0 * q, q))
+    z = -t[::-1]
+    mesh = MeshQuad.init_tensor(r, z)
+    zc = mesh.p[1, mesh.t].mean(axis=0)
+    coating = np.nonzero(zc > -h)[0] if h > 0 else np.array([], dtype=np.int64)
+    substrate = np.nonzero(zc <= -h)[0] if not rigid_base else np.array([], dtype=np.int64)
+    return LayeredMesh(mesh, coating, substrate, a_ref, h, L, D, r_f, rigid_base, spec)

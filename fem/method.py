@@ -1,0 +1,276 @@
+"""``FEMMethod``: the axisymmetric finite-element model behind the common ``Method`` interface.
+
+Supported cases (``supports``): circular contacts in which
+
+* one body is rigid and uncoated (the indenter) and the other elastic, coated or not, with an
+  elastic or a rigid substrate: one (coated) half-space under a rigid paraboloid of the
+  relative radius ``R`` of the case;
+* two identical elastic bodies (same substrate, coating and thickness): under the half-space
+  assumption both carry the same pressure and deform alike, so the pair is one body under a
+  rigid paraboloid of radius ``2 R`` with half the approach (``delta = 2 delta_1``).
+
+An elastic indenter on a different elastic body is not supported (it would need both meshed).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, replace
+from typing import Any
+
+import numpy as np
+
+from coathertz.case import ContactCase
+from coathertz.errors import CoatHertzError, ConvergenceError
+from coathertz.fem.contact import ActiveSet, Penalty
+from coathertz.fem.farfield import BoussinesqFarField, FixedFarField
+from coathertz.fem.loading import LoadPath, solve_incremental
+from coathertz.fem.material import LinearElastic
+from coathertz.fem.mesh import MESH_LEVELS, build_mesh, edge_band
+from coathertz.fem.model import FEModel, Region
+from coathertz.fem.post import contact_radius, peak_pressure, stress_report, surface_pressure
+from coathertz.fem.solvers import AMGSolver, DirectSolver
+from coathertz.hertz import hertz_circular
+from coathertz.materials import Body, Material
+from coathertz.results import ContactResult
+
+CONTACTS = {"active-set": lambda beta: ActiveSet(), "penalty": lambda beta: Penalty(beta=beta)}
+SOLVERS = {"direct": DirectSolver, "amg": AMGSolver}
+FARFIELDS = {"boussinesq": BoussinesqFarField, "fixed": FixedFarField}
+
+
+@dataclass(frozen=True)
+class Equivalent:
+    """The single deformable body, the rigid paraboloid radius and the approach factor."""
+
+    body: Body
+    R: float
+    delta_factor: float
+
+
+def axisymmetric_equivalent(case: ContactCase) -> Equivalent | None:
+    """The model problem that ``case`` reduces to, or ``None`` (see module docstring)."""
+    if not case.is_circular:
+        return None
+    b1, b2 = case.body1, case.body2
+    if b1.is_rigid and not b2.is_rigid:
+        return Equivalent(b2, case.R, 1.0)
+    if b2.is_rigid and not b1.is_rigid:
+        return Equivalent(b1, case.R, 1.0)
+    if b1.material == b2.material and b1.coating == b2.coating and not b1.is_rigid:
+        return Equivalent(b1, 2.0 * case.R, 2.0)
+    return None
+
+
+def _finite_or_none(x: float) -> float | None:
+    """JSON has no NaN: undefined estimates are stored as ``None``."""
+    return float(x) if math.isfinite(x) else None
+
+
+def _choice(name: str, value: str, options: dict) -> Any:
+    if value not in options:
+        raise CoatHertzError(f"{name} must be one of {sorted(options)}, got {value!r}")
+    return options[value]
+
+
+class FEMMethod:
+    """Axisymmetric FE contact model (scikit-fem, Q2 elements, Taylor-Hood u-p for nu >= 0.45).
+
+    Parameters
+    ----------
+    mesh
+        Mesh level: ``coarse`` (20 elements across a), ``default`` (40), ``fine`` (100).
+    contact
+        ``active-set`` (Lagrange multipliers, exact) or ``penalty``.
+    solver
+        ``direct`` (SuperLU, reference) or ``amg`` (CG + pyamg smoothed aggregation; the mixed
+        u-p system always uses the direct solver).
+    farfield
+        ``boussinesq`` (point-load field on the outer boundary) or ``fixed`` (clamped).
+    penalty_beta
+        Dimensionless penalty stiffness (``penalty`` only), ``> 0``.
+    mixed
+        ``auto`` (u-p in regions with nu >= 0.45), ``always`` or ``never``.
+    n_steps
+        Load increments (>= 1); linear laws give the same answer for any value.
+    stresses
+        Compute the subsurface stress profiles (axis, interface) into ``fields``/``meta``.
+    max_remesh
+        How often the mesh may be rebuilt around the computed contact radius.
+    n_a, L
+        Override the mesh level's elements across ``a`` and domain size (units of max(a, h)).
+    """
+
+    name = "fem"
+
+    def __init__(
+        self,
+        mesh: str = "default",
+        contact: str = "active-set",
+        solver: str = "direct",
+        farfield: str = "boussinesq",
+        penalty_beta: float = 1e3,
+        mixed: str = "auto",
+        n_steps: int = 1,
+        stresses: bool = False,
+        max_remesh: int = 3,
+        n_a: int | None = None,
+        L: float | None = None,
+    ) -> None:
+        spec = _choice("mesh", mesh, MESH_LEVELS)
+        over = {k: v for k, v in (("n_a", n_a), ("L", L)) if v is not None}
+        self.spec = replace(spec, **over) if over else spec
+        self.overrides = over
+        _choice("contact", contact, CONTACTS)
+        _choice("solver", solver, SOLVERS)
+        _choice("farfield", farfield, FARFIELDS)
+        _choice("mixed", mixed, {"auto": 0, "always": 1, "never": 2})
+        if not (isinstance(penalty_beta, int | float) and 0 < penalty_beta < math.inf):
+            raise CoatHertzError(f"penalty_beta must satisfy 0 < penalty_beta < inf, got {penalty_beta!r}")
+        if not (isinstance(n_steps, int) and 1 <= n_steps <= 1000):
+            raise CoatHertzError(f"n_steps must be an integer in [1, 1000], got {n_steps!r}")
+        if not (isinstance(max_remesh, int) and 0 <= max_remesh <= 10):
+            raise CoatHertzError(f"max_remesh must be an integer in [0, 10], got {max_remesh!r}")
+        self.mesh, self.contact, self.solver, self.farfield = mesh, contact, solver, farfield
+        self.penalty_beta, self.mixed, self.n_steps = float(penalty_beta), mixed, n_steps
+        self.stresses, self.max_remesh = bool(stresses), max_remesh
+
+    def settings(self) -> dict[str, Any]:
+        s = {"mesh": self.mesh, "contact": self.contact, "solver": self.solver, "farfield": self.farfield}
+        if self.contact == "penalty":
+            s["penalty_beta"] = self.penalty_beta
+        if self.mixed != "auto":
+            s["mixed"] = self.mixed
+        s.update(self.overrides)
+        return s
+
+    def supports(self, case: ContactCase) -> bool:
+        return axisymmetric_equivalent(case) is not None
+
+    # ------------------------------------------------------------------------------------
+    def _regions(self, lm, body: Body) -> list[Region]:
+        def is_mixed(m: Material) -> bool:
+            return self.mixed == "always" or (self.mixed == "auto" and m.nu >= 0.45)
+
+        regions = []
+        if lm.h > 0:
+            cm = body.coating.material
+            regions.append(Region(lm.coating, LinearElastic(cm.E, cm.nu), is_mixed(cm)))
+        if not lm.rigid_base:
+            sm = body.material
+            els = lm.substrate if lm.h > 0 else np.arange(lm.n_elements)
+            regions.append(Region(els, LinearElastic(sm.E, sm.nu), is_mixed(sm)))
+        for reg in regions:
+            if reg.law.nu >= 0.5 and not reg.mixed:
+                raise CoatHertzError("nu = 0.5 needs the mixed u-p form: use mixed='auto' or 'always'")
+        return regions
+
+    def _predict_a(self, eq: Equivalent, W: float) -> float:
+        body = eq.body
+        h = body.coating.h if body.is_coated else 0.0
+        if h == 0:
+            return float(hertz_circular(W, eq.R, body.material.E_star).a0)
+        a_c = float(hertz_circular(W, eq.R, body.coating.material.E_star).a0)
+        if body.material.is_rigid:
+            return a_c
+        a_s = float(hertz_circular(W, eq.R, body.material.E_star).a0)
+        wgt = 1.0 - math.exp(-h / a_s)
+        return a_s + (a_c - a_s) * wgt
+
+    def solve(self, case: ContactCase) -> ContactResult:
+        return self.solve_full(case)[0]
+
+    def solve_full(self, case: ContactCase) -> tuple[ContactResult, FEModel, LoadPath]:
+        """Like :meth:`solve`, also returning the model and the load path (for VTU output)."""
+        eq = axisymmetric_equivalent(case)
+        if eq is None:
+            raise CoatHertzError(
+                "fem supports circular contacts of a rigid uncoated indenter with an elastic (coated) body,"
+                " or of two identical bodies; got: " + case.describe()
+            )
+        t0 = time.perf_counter()
+        body = eq.body
+        h = body.coating.h if body.is_coated else 0.0
+        rigid_base = body.material.is_rigid
+        ff_mat = None if rigid_base else body.material
+        E_ref = body.coating.material.E_star if h > 0 else body.material.E_star
+
+        def g0(r):
+            return r**2 / (2.0 * eq.R)  # Hertz paraboloid
+
+        a_ref = self._predict_a(eq, case.W)
+        remeshes = 0
+        active0 = None
+        while True:
+            lm = build_mesh(a_ref, h, self.spec, rigid_base)
+            model = FEModel(lm, self._regions(lm, body), ff_mat, FARFIELDS[self.farfield]())
+            if any(reg.mixed for reg in model.regions):
+                solver = DirectSolver(symmetric_mode=False)  # indefinite saddle point
+            else:
+                solver = SOLVERS[self.solver]()
+            r_c = model.r_dof[model.candidates]
+            active0 = r_c <= a_ref
+            path = solve_incremental(
+                model, CONTACTS[self.contact](self.penalty_beta), solver, case.W, g0, E_ref,
+                a_ref / self.spec.n_a, n_steps=self.n_steps, active0=active0,
+            )
+            sol = path.solution
+            p = surface_pressure(sol.lam, model.weights_all[model.candidates])
+            radii = contact_radius(r_c, p, sol.gap, sol.active)
+            a = radii["a"]
+            # penetration outside the candidate zone?
+            top = model.top
+            gap_top = g0(model.r_dof[top]) - sol.delta - path.x[top]
+            outside_ok = np.all(gap_top[model.r_dof[top] > lm.r_fine] >= 0)
+            s_e, w = edge_band(a_ref, h, self.spec)
+            if s_e < a_ref / self.spec.n_a:
+                in_zone = abs(a - a_ref) <= 0.7 * w
+            else:
+                in_zone = 0.85 * a_ref <= a <= lm.r_fine / 1.2
+            if (in_zone and outside_ok) or remeshes >= self.max_remesh:
+                break
+            a_ref = a if outside_ok else 1.5 * a_ref
+            remeshes += 1
+        if not (in_zone and outside_ok):
+            raise ConvergenceError(
+                f"contact radius {a:.4g} m stayed outside the refined zone after max_remesh={self.max_remesh}"
+            )
+        p_axis = peak_pressure(r_c, p, a)
+        p[r_c == 0.0] = p_axis
+        p0 = max(p_axis, float(p.max()))  # maximum contact pressure (on the axis in all cases seen)
+        wall = time.perf_counter() - t0
+        meta = {
+            "settings": self.settings(),
+            "mesh_level": self.mesh,
+            "elements": lm.n_elements,
+            "dofs": int(model.n_dofs),
+            "elements_across_a": float(a / (a_ref / self.spec.n_a)),
+            "domain_L": lm.L,
+            "solver": solver.name,
+            "solver_stats": dict(solver.stats),
+            "contact": self.contact,
+            "contact_iterations": path.contact_iterations,
+            "newton_iterations": path.newton_iterations,
+            "load_steps": path.steps,
+            "remeshes": remeshes,
+            "mixed_regions": [bool(reg.mixed) for reg in model.regions],
+            "R_model": eq.R,
+            "delta_factor": eq.delta_factor,
+            "a_node": radii["a_node"],
+            "a_gap": _finite_or_none(radii["a_gap"]),
+            "a_pfit": _finite_or_none(radii["a_pfit"]),
+            "a_num": radii["a_num"],
+            "active_nodes": int(sol.active.sum()),
+            "p_axis": p_axis,
+            "r_p_max": float(r_c[int(np.argmax(p))]),
+        }
+        fields = {"r": r_c, "p": p, "gap": sol.gap, "active": sol.active}
+        if self.stresses:
+            sfields, smeta = stress_report(model, path.x, a)
+            fields.update(sfields)
+            meta.update(smeta)
+        meta["wall_time"] = time.perf_counter() - t0
+        meta["wall_time_solve"] = wall
+        res = ContactResult("fem", eq.delta_factor * sol.delta, a, p0, case.W, meta=meta, fields=fields)
+        return res, model, path

@@ -1,0 +1,143 @@
+"""The discrete problem: bases, stiffness, boundary conditions and contact candidates.
+
+Unknowns are the Q2 displacement ``u = (u_r, u_z)`` on the whole mesh and, in regions treated
+with the mixed u-p form, a continuous Q1 pressure on that region only (Taylor-Hood Q2-Q1;
+the pressure may jump across the coating/substrate interface because each region has its own
+pressure nodes). Essential conditions: ``u_r = 0`` on the axis, the far field on the outer
+boundary (:mod:`coathertz.fem.farfield`), ``u = 0`` on a rigid base. The contact candidates
+are the ``u_z`` dofs of surface nodes with ``r <= r_fine``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+from skfem import Basis, ElementQuad1, ElementQuad2, ElementVector, FacetBasis, LinearForm, asm
+
+from coathertz.fem import forms
+from coathertz.fem.material import LinearElastic, MaterialLaw
+from coathertz.fem.mesh import LayeredMesh
+from coathertz.materials import Material
+
+INTORDER = 4
+
+
+@dataclass
+class Region:
+    """A set of elements with one material law; ``mixed`` selects the u-p form."""
+
+    elements: np.ndarray
+    law: MaterialLaw
+    mixed: bool = False
+
+
+@dataclass
+class FEModel:
+    """Assembled axisymmetric model of one layered mesh (see module docstring)."""
+
+    lm: LayeredMesh
+    regions: list[Region]
+    farfield_material: Material | None
+    farfield: object
+    basis: Basis = field(init=False)
+    n_u: int = field(init=False)
+
+    def __post_init__(self) -> None:
+        mesh = self.lm.mesh
+        self.basis = Basis(mesh, ElementVector(ElementQuad2()), intorder=INTORDER)
+        self.n_u = self.basis.N
+        self._p_blocks = []  # (pressure dofs, coupling, compliance, scale) per mixed region
+        self._K: sp.csr_matrix | None = None
+        locs = self.basis.doflocs
+        self.r_dof, self.z_dof = locs[0], locs[1]
+        comp = np.zeros(self.n_u, dtype=int)
+        comp[self.basis.nodal_dofs[1]] = 1
+        comp[self.basis.facet_dofs[1]] = 1
+        comp[self.basis.interior_dofs[1]] = 1
+        self.comp = comp
+        tol = 1e-9 * self.lm.a_ref
+        self.top = np.nonzero((np.abs(self.z_dof) < tol) & (comp == 1))[0]
+        self.top = self.top[np.argsort(self.r_dof[self.top])]
+        # nodal area weights int phi_i 2 pi r ds of the surface u_z dofs
+        top_facets = mesh.facets_satisfying(lambda x: np.abs(x[1]) < tol)
+        fb = FacetBasis(mesh, self.basis.elem, facets=top_facets, intorder=INTORDER)
+        wz = asm(LinearForm(lambda v, w: v[1] * 2 * np.pi * w.x[0]), fb)
+        self.weights_all = wz
+
+    # -- dofs ----------------------------------------------------------------------------
+    @property
+    def candidates(self) -> np.ndarray:
+        """Surface ``u_z`` dofs inside the fine zone (sorted by r)."""
+        return self.top[self.r_dof[self.top] <= self.lm.r_fine * (1 + 1e-9)]
+
+    @property
+    def n_dofs(self) -> int:
+        return self.n_u + sum(len(b[0]) for b in self._p_blocks)
+
+    def dirichlet(self, W: float) -> tuple[np.ndarray, np.ndarray]:
+        """Essential dofs and their values for load ``W``."""
+        tol = 1e-9 * self.lm.a_ref
+        r, z, comp = self.r_dof, self.z_dof, self.comp
+        axis = np.nonzero((r < tol) & (comp == 0))[0]
+        outer = (np.abs(r - self.lm.L) < tol * self.lm.L / self.lm.a_ref) | (
+            np.abs(z + self.lm.D) < tol * self.lm.L / self.lm.a_ref
+        )
+        outer_dofs = np.nonzero(outer)[0]
+        if self.lm.rigid_base or self.farfield_material is None:
+            vals_outer = np.zeros(len(outer_dofs))
+        else:
+            uv = self.farfield.values(r[outer_dofs], z[outer_dofs], W, self.farfield_material)
+            vals_outer = uv[comp[outer_dofs], np.arange(len(outer_dofs))]
+        dofs = np.concatenate([axis, outer_dofs])
+        vals = np.concatenate([np.zeros(len(axis)), vals_outer])
+        dofs, idx = np.unique(dofs, return_index=True)
+        return dofs, vals[idx]
+
+    # -- assembly ------------------------------------------------------------------------
+    def _field(self, region: Region, values: float) -> np.ndarray:
+        nq = self.basis.X.shape[-1]
+        return np.full((len(region.elements), nq), values)
+
+    def stiffness(self) -> sp.csr_matrix:
+        """System matrix of the linear-elastic model (displacement + mixed-region pressures)."""
+        if self._K is not None:
+            return self._K
+        mesh = self.lm.mesh
+        nel = mesh.t.shape[1]
+        nq = self.basis.X.shape[-1]
+        lam = np.zeros((nel, nq))
+        mu = np.zeros((nel, nq))
+        blocks = []
+        for reg in self.regions:
+            if not isinstance(reg.law, LinearElastic):
+                raise TypeError("stiffness() is the linear-elastic fast path; use loading.tangent")
+            lam_r, mu_r = reg.law.lame
+            mu[reg.elements] = mu_r
+            lam[reg.elements] = 0.0 if reg.mixed else lam_r
+            if reg.mixed:
+                ub = Basis(mesh, self.basis.elem, intorder=INTORDER, elements=reg.elements)
+                pb = Basis(mesh, ElementQuad1(), intorder=INTORDER, elements=reg.elements)
+                inv_lam = 0.0 if math.isinf(lam_r) else 1.0 / lam_r
+                Bm = asm(forms.pressure_coupling, pb, ub)
+                C = asm(forms.pressure_compliance, pb, inv_lam=inv_lam)
+                pd = np.unique(pb.element_dofs)
+                # unknown p_hat = p / mu: balances the saddle-point blocks for the factorisation
+                blocks.append((pd, mu_r * Bm.tocsc()[:, pd], mu_r**2 * C.tocsr()[pd][:, pd], mu_r))
+        K = asm(forms.elasticity, self.basis, lam=lam, mu=mu)
+        self._p_blocks = blocks
+        if blocks:
+            cols = sp.hstack([b[1] for b in blocks])
+            C = sp.block_diag([b[2] for b in blocks])
+            K = sp.bmat([[K, cols], [cols.T, C]])
+        self._K = sp.csr_matrix(K)
+        return self._K
+
+    def near_null_space(self, free: np.ndarray) -> np.ndarray:
+        """Near-null space for smoothed aggregation on the ``free`` dofs: ``u_z = 1``, ``u_r = 1``."""
+        B = np.zeros((self.n_u, 2))
+        B[self.comp == 1, 0] = 1.0
+        B[self.comp == 0, 1] = 1.0
+        return B[free[free < self.n_u]] if np.all(free < self.n_u) else None
