@@ -157,6 +157,8 @@ def solve_zeta(Rx_over_Ry: ArrayLike) -> ArrayLike:
     q = np.asarray(Rx_over_Ry, dtype=float)
     if np.any(~(q >= 1.0)) or np.any(np.isinf(q)):
         raise CoatHertzError(f"Rx/Ry must satisfy 1 <= Rx/Ry < inf (Rx major), got {q}")
+    if np.all(q == 1.0):  # circular: skip the bisection (studies call this per case)
+        return _out(np.ones(q.shape))
     lo = np.full(q.shape, math.log(1e-12))
     hi = np.zeros(q.shape)
     target = np.log(q)

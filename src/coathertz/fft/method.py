@@ -246,10 +246,9 @@ class FFTMethod:
             m = p > 0
             ext_x = float(np.max(np.abs(X[m]))) + grid.dx / 2 if np.any(m) else 0.0
             ext_y = float(np.max(np.abs(Y[m]))) + grid.dy / 2 if np.any(m) else 0.0
-            if self.radius == "edge-fit":
-                ra, rb = ra_f, rb_f
-            else:
-                ra, rb = ra_m, rb_m
+            h_min = min((b.coating.h for b in (c.body1, c.body2) if b.is_coated), default=math.inf)
+            use_fit = self.radius == "edge-fit" and estimators.edge_fit_valid(grid, ra_m, rb_m, h_min)
+            ra, rb = (ra_f, rb_f) if use_fit else (ra_m, rb_m)
             meta = {
                 "grid": grid.describe(),
                 "iterations": int(sol.iterations[k]),
@@ -267,6 +266,7 @@ class FFTMethod:
                 "a_fit": math.sqrt(ra_f * rb_f),
                 "r_a_fit": ra_f,
                 "r_b_fit": rb_f,
+                "radius_estimator": "edge-fit" if use_fit else "area",
                 "extent": [ext_x, ext_y],
                 "settings": dict(self.settings()),
             }

@@ -1,1 +1,125 @@
-"""Package."""
+"""Verification reports: figures, error maps, HTML and Markdown documents, regression.
+
+:func:`write_report` takes the study results of a run and writes, into one folder, the
+studies' figures (PNG and SVG), the E x H error maps and pairwise-difference plots,
+``index.html`` (self-contained), ``summary.md``, ``results.json`` (claims and tidy rows),
+``baseline.json`` (for ``coathertz verify --baseline``) and ``rows/<study>.csv``.
+"""
+
+from __future__ import annotations
+
+import csv
+import inspect
+import json
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from coathertz.report.baseline import Drift, baseline_dict, compare, write_baseline
+from coathertz.report.document import html_page, markdown
+
+__all__ = ["Drift", "ReportFiles", "compare", "write_report"]
+
+
+@dataclass
+class ReportFiles:
+    html: Path
+    markdown: Path
+    results: Path
+    baseline: Path
+    figures: dict[str, list[Path]] = field(default_factory=dict)
+    drift: list[Drift] | None = None
+
+    @property
+    def drifted(self) -> list[Drift]:
+        return [d for d in (self.drift or []) if d.is_drift]
+
+
+def _json_safe(v: Any) -> Any:
+    if isinstance(v, float) and not math.isfinite(v):
+        return str(v)
+    if isinstance(v, dict):
+        return {str(k): _json_safe(x) for k, x in v.items()}
+    if isinstance(v, list | tuple):
+        return [_json_safe(x) for x in v]
+    if hasattr(v, "item") and callable(v.item):
+        return _json_safe(v.item())
+    return v
+
+
+def _write_csv(path: Path, rows: Sequence[dict]) -> None:
+    if not rows:
+        return
+    cols: list[str] = []
+    for r in rows:
+        cols += [k for k in r if k not in cols]
+    with path.open("w", newline="") as fh:
+        w = csv.DictWriter(fh, cols)
+        w.writeheader()
+        w.writerows(rows)
+
+
+BARS = (("a_bar", "a"), ("p_bar", "p"), ("delta_bar", "delta"))
+METHODS = ("closed-form", "fft", "fem")
+
+
+def side_by_side(rows: Sequence[dict], limit: int = 60) -> list[dict]:
+    """The bars of every case that all three methods solved, one row per case (report table)."""
+    by_case: dict[str, dict[str, dict]] = {}
+    for r in rows:
+        by_case.setdefault(r["case"], {})[r["method"]] = r
+    out = []
+    for cid, ms in by_case.items():
+        if all(m in ms for m in METHODS):
+            out.append({"case": cid, **{f"{q}:{m}": ms[m][k] for k, q in BARS for m in METHODS}})
+    return out[:limit]
+
+
+def write_report(
+    results: Sequence[Any],
+    outdir: str | Path,
+    provenance: dict,
+    modules: dict[str, Any] | None = None,
+    baseline: dict | None = None,
+    notes: Sequence[str] = (),
+) -> ReportFiles:
+    """Write the full report of ``results`` (study results) into ``outdir``."""
+    from coathertz.report.figures import error_heatmaps, pairwise_plot
+    from coathertz.verification._common import pairwise_summary
+
+    out = Path(outdir)
+    figdir = out / "figures"
+    figdir.mkdir(parents=True, exist_ok=True)
+    (out / "rows").mkdir(exist_ok=True)
+    figures: dict[str, list[Path]] = {}
+    docs = {}
+    for r in results:
+        mod = (modules or {}).get(r.name)
+        paths: list[Path] = []
+        if mod is not None:
+            paths += list(mod.plot(r, figdir))
+            docs[r.name] = inspect.getdoc(mod) or ""
+        generic = getattr(mod, "GENERIC_FIGURES", True)  # studies re-using another's cases opt out
+        if generic:
+            paths += error_heatmaps(r, figdir)
+            paths += pairwise_plot(r, figdir)
+            qs = [q for q in ("a", "r_a", "r_b", "p", "delta") if any(e["quantity"] == q for e in r.errors)]
+            r.extra["pairwise"] = pairwise_summary(
+                [x for x in r.rows if not x["method"].endswith("-equiv")], qs or ("a", "p", "delta"))
+            r.extra["side_by_side"] = side_by_side(r.rows)
+        figures[r.name] = paths
+        _write_csv(out / "rows" / f"{r.name}.csv", r.rows)
+        _write_csv(out / "rows" / f"{r.name}_errors.csv", r.errors)
+    current = baseline_dict(results, provenance)
+    drift = compare(baseline, current) if baseline is not None else None
+    results_path = out / "results.json"
+    results_path.write_text(json.dumps(_json_safe({"provenance": provenance,
+                                                   "studies": [r.to_json() for r in results]}), indent=1))
+    base_path = write_baseline(out / "baseline.json", results, provenance)
+    md = out / "summary.md"
+    md.write_text(markdown(results, provenance, figures, out, drift, notes))
+    page = out / "index.html"
+    page.write_text(html_page(results, provenance, figures, drift, notes, docs))
+    return ReportFiles(page, md, results_path, base_path, figures, drift)

@@ -1,0 +1,120 @@
+"""Report figures common to every study: E x H error maps and pairwise method differences.
+
+The study modules draw the paper's figures themselves (``plot``); these are the views the report
+adds to each study: where in the (E, H) plane the closed form errs against each numerical method,
+and how far the methods are apart on the cases they share.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from pathlib import Path
+
+import numpy as np
+
+QLABEL = {"a": "a", "p": "$p_0$", "delta": r"$\delta$", "r_a": "$r_a$", "r_b": "$r_b$"}
+
+
+def _save(fig, outdir: Path, name: str) -> list[Path]:
+    import matplotlib.pyplot as plt
+
+    outdir.mkdir(parents=True, exist_ok=True)
+    paths = []
+    for ext in ("png", "svg"):
+        p = outdir / f"{name}.{ext}"
+        fig.savefig(p, dpi=150 if ext == "png" else None, bbox_inches="tight")
+        paths.append(p)
+    plt.close(fig)
+    return paths
+
+
+def error_heatmaps(result, outdir: str | Path) -> list[Path]:
+    """One figure per numerical reference: error of the closed form over (E, H), one panel per quantity.
+
+    Where a study has further parameters (the Poisson check's nu_c), each cell shows the error of
+    largest magnitude over them (sign kept).
+    """
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import TwoSlopeNorm
+
+    errors = [e for e in result.errors if "E" in e and "H" in e]
+    paths: list[Path] = []
+    for ref in sorted({e["reference"] for e in errors}):
+        sel = [e for e in errors if e["reference"] == ref]
+        qs = [q for q in ("a", "r_a", "r_b", "p", "delta") if any(e["quantity"] == q for e in sel)]
+        Es = sorted({round(e["E"], 9) for e in sel})
+        Hs = sorted({round(e["H"], 9) for e in sel})
+        if len(Es) < 2 or len(Hs) < 2:
+            continue
+        vmax = max(abs(e["err"]) for e in sel) or 1.0
+        fig, axes = plt.subplots(1, len(qs), figsize=(3.6 * len(qs), 3.3), squeeze=False)
+        for j, q in enumerate(qs):
+            Z = np.full((len(Es), len(Hs)), np.nan)
+            for e in sel:
+                if e["quantity"] != q:
+                    continue
+                i, k = Es.index(round(e["E"], 9)), Hs.index(round(e["H"], 9))
+                if not math.isfinite(Z[i, k]) or abs(e["err"]) > abs(Z[i, k]):
+                    Z[i, k] = e["err"]
+            ax = axes[0, j]
+            im = ax.pcolormesh(np.arange(len(Hs) + 1), np.arange(len(Es) + 1), Z, cmap="RdBu_r",
+                               norm=TwoSlopeNorm(0.0, -vmax, vmax), shading="flat")
+            step_h = max(1, len(Hs) // 6)
+            ax.set_xticks(np.arange(len(Hs))[::step_h] + 0.5, [f"{h:.2g}" for h in Hs[::step_h]], fontsize=7,
+                          rotation=45)
+            step_e = max(1, len(Es) // 8)
+            ax.set_yticks(np.arange(len(Es))[::step_e] + 0.5, [f"{E:.3g}" for E in Es[::step_e]], fontsize=7)
+            ax.set_xlabel("H (eq 7)")
+            ax.set_ylabel(r"E = $E_c^*/E_s^*$")
+            ax.set_title(f"{QLABEL[q]}: max |err| {np.nanmax(np.abs(Z)):.2f} %", fontsize=9)
+            fig.colorbar(im, ax=ax, label="error [%]")
+        fig.suptitle(f"{result.name}: error of the closed form against {ref.upper()}, "
+                     "(predicted - numerical)/numerical", fontsize=10)
+        fig.tight_layout()
+        paths += _save(fig, Path(outdir), f"{result.name}_errmap_{ref}")
+    return paths
+
+
+def pairwise_plot(result, outdir: str | Path, quantities: Sequence[str] | None = None) -> list[Path]:
+    """Pairwise differences of the methods on every case two or more of them solved."""
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    from coathertz.verification._common import pairwise
+
+    qs = quantities or [q for q in ("a", "r_a", "r_b", "p", "delta")
+                        if any(e["quantity"] == q for e in result.errors)] or ["a", "p", "delta"]
+    diffs = pairwise([r for r in result.rows if not r["method"].endswith("-equiv")], qs)
+    if not diffs:
+        return []
+    pairs = sorted({d["pair"] for d in diffs})
+    use_h = all("H" in d for d in diffs)
+    fig, axes = plt.subplots(1, len(pairs), figsize=(4.2 * len(pairs), 3.3), squeeze=False)
+    markers = dict(zip(qs, "os^vD", strict=False))
+    for j, pair in enumerate(pairs):
+        ax = axes[0, j]
+        for q in qs:
+            sel = [d for d in diffs if d["pair"] == pair and d["quantity"] == q]
+            if not sel:
+                continue
+            x = [d["H"] for d in sel] if use_h else list(range(len(sel)))
+            ax.plot(x, [d["diff"] for d in sel], markers[q], ms=4, alpha=0.7, mfc="none", label=QLABEL[q])
+        if use_h:
+            ax.set_xscale("log")
+            ax.set_xlabel("H (eq 7)")
+        else:
+            ax.set_xlabel("case")
+        ax.axhline(0, color="k", lw=0.6)
+        ax.set_ylabel("difference [%] (first / second - 1)")
+        ax.set_title(pair, fontsize=9)
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(fontsize=7)
+    fig.suptitle(f"{result.name}: pairwise differences between methods", fontsize=10)
+    fig.tight_layout()
+    return _save(fig, Path(outdir), f"{result.name}_pairwise")

@@ -1,0 +1,315 @@
+"""Run (case, method) tasks through one runner, storing each result as it finishes.
+
+Backends
+--------
+* ``serial``: in this process (tests; the closed form, which is faster than a process hop).
+* local processes (default, ``workers=2``): :class:`concurrent.futures.ProcessPoolExecutor`.
+* ``dask.distributed`` (optional extra ``coathertz[dask]``): ``scheduler="tcp://host:8786"`` or a
+  ``distributed.Client``; tasks are submitted to the cluster, results stored as they arrive.
+
+Every task is first looked up in the :class:`~coathertz.store.ResultStore`; only missing ones
+run. Tasks of one method are sent in chunks (``chunk_size``; methods with a ``solve_many``
+batch entry point, such as the FFT solver, get several cases per chunk so that they share grids
+and warm starts); a chunk's results are written to the store the moment it returns, one row per
+case. An interrupted run (Ctrl-C, a killed process) therefore loses at most the chunks in
+flight, and a rerun picks up where it stopped. Failures of single cases (a solver that did not
+converge, a case a method rejects) are stored as errors and reported, not raised.
+"""
+
+from __future__ import annotations
+
+import math
+import multiprocessing
+import os
+import time
+import traceback
+from collections.abc import Callable, Iterable, Sequence
+from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from dataclasses import dataclass, field
+from typing import Any
+
+from coathertz.case import ContactCase
+from coathertz.errors import CoatHertzError
+from coathertz.methods import Method
+from coathertz.store import ResultStore, StoredResult, case_key, settings_key
+
+#: Methods run in the calling process even when a process pool is used (cheaper than a hop).
+INLINE_METHODS = ("closed-form",)
+DEFAULT_WORKERS = 2
+
+
+class RunInterrupted(KeyboardInterrupt):
+    """Raised by :func:`run_tasks` when ``stop_after`` results have been stored (tests)."""
+
+
+@dataclass(frozen=True)
+class Task:
+    """Solve ``case`` with ``method``."""
+
+    case: ContactCase
+    method: Method
+
+    @property
+    def key(self) -> tuple[str, str, str]:
+        """(case key, method name, settings key): one method may run with several settings."""
+        return case_key(self.case), self.method.name, settings_key(self.method.settings())
+
+
+@dataclass
+class RunOutcome:
+    """What :func:`run_tasks` did: results by ``(case_key, method, settings_key)`` and counts."""
+
+    results: dict[tuple[str, str, str], StoredResult] = field(default_factory=dict)
+    reused: int = 0
+    computed: int = 0
+    failed: int = 0
+    wall_time: float = 0.0
+    method_time: dict[str, float] = field(default_factory=dict)
+
+    def get(self, case: ContactCase, method: str | Method) -> StoredResult | None:
+        """Result of ``case`` by ``method`` (a Method, or a name if only one setting ran)."""
+        if not isinstance(method, str):
+            return self.results.get(Task(case, method).key)
+        ck = case_key(case)
+        return next((sr for k, sr in self.results.items() if k[0] == ck and k[1] == method), None)
+
+
+def _scalars(result: Any) -> dict:
+    d = result.scalars()
+    return d
+
+
+def solve_chunk(method: Method, cases: Sequence[ContactCase]) -> list[tuple[dict | None, str | None]]:
+    """Solve ``cases`` with ``method`` (batch entry point if there is one); never raises.
+
+    Returns ``(scalars, None)`` or ``(None, error message)`` per case.
+    """
+    out: list[tuple[dict | None, str | None]] = []
+    many = getattr(method, "solve_many", None)
+    if many is not None and len(cases) > 1:
+        try:
+            return [(_scalars(r), None) for r in many(list(cases))]
+        except Exception:  # one bad case spoils the batch: redo case by case
+            pass
+    for c in cases:
+        try:
+            out.append((_scalars(method.solve(c)), None))
+        except Exception as exc:
+            out.append((None, f"{type(exc).__name__}: {exc}"))
+    return out
+
+
+def _progress(total: int, enabled: bool, desc: str):
+    try:
+        from tqdm.auto import tqdm
+    except ImportError:  # pragma: no cover
+        enabled = False
+    if not enabled:
+        class _Null:
+            def update(self, n: int = 1) -> None: ...
+            def close(self) -> None: ...
+            def set_postfix_str(self, s: str) -> None: ...
+        return _Null()
+    return tqdm(total=total, desc=desc, unit="case", leave=False, mininterval=0.5)
+
+
+def _chunks(tasks: list[Task], chunk_size: int | None) -> list[tuple[Method, list[ContactCase]]]:
+    by_method: dict[tuple[str, int], list[Task]] = {}
+    methods: dict[tuple[str, int], Method] = {}
+    for t in tasks:
+        k = (t.method.name, id(t.method))
+        by_method.setdefault(k, []).append(t)
+        methods[k] = t.method
+    out = []
+    for k, ts in by_method.items():
+        m = methods[k]
+        size = chunk_size or (8 if hasattr(m, "solve_many") else 1)
+        for s in range(0, len(ts), size):
+            out.append((m, [t.case for t in ts[s : s + size]]))
+    return out
+
+
+def _dask_client(scheduler: Any):
+    try:
+        from distributed import Client
+    except ImportError as exc:
+        raise CoatHertzError(
+            "--scheduler needs dask.distributed: pip install 'coathertz[dask]'"
+        ) from exc
+    if isinstance(scheduler, str):
+        return Client(scheduler), True
+    return scheduler, False
+
+
+def run_tasks(
+    tasks: Iterable[Task],
+    store: ResultStore,
+    *,
+    workers: int = DEFAULT_WORKERS,
+    scheduler: Any = None,
+    progress: bool = True,
+    chunk_size: int | None = None,
+    inline: Sequence[str] = INLINE_METHODS,
+    retry_errors: bool = False,
+    stop_after: int | None = None,
+    desc: str = "cases",
+    on_result: Callable[[Task, StoredResult], None] | None = None,
+) -> RunOutcome:
+    """Run every task not yet in ``store``; store each result as soon as it is available.
+
+    Parameters
+    ----------
+    tasks
+        (case, method) pairs; duplicates are solved once.
+    store
+        Result store; finished results are reused, new ones written one by one.
+    workers
+        Local worker processes; ``workers <= 1`` runs everything in this process.
+    scheduler
+        ``dask.distributed`` scheduler address (``tcp://...``) or ``Client``; overrides
+        ``workers``.
+    chunk_size
+        Cases per submitted chunk (default 8 for methods with ``solve_many``, else 1).
+    inline
+        Method names always run in this process.
+    retry_errors
+        Rerun cases whose stored result is an error.
+    stop_after
+        Raise :class:`RunInterrupted` after this many new results are stored (for tests of
+        interruption and resume).
+    """
+    t_start = time.perf_counter()
+    outcome = RunOutcome()
+    unique: dict[tuple[str, str], Task] = {}
+    for t in tasks:
+        unique.setdefault(t.key, t)
+    pending: list[Task] = []
+    by_method: dict[int, list[Task]] = {}
+    for t in unique.values():
+        by_method.setdefault(id(t.method), []).append(t)
+    for ts in by_method.values():
+        m = ts[0].method
+        found = store.get_many([t.case for t in ts], m.name, m.settings())
+        for t in ts:
+            sr = found.get(t.key[0])
+            if sr is not None and (sr.ok or not retry_errors):
+                outcome.results[t.key] = sr
+                outcome.reused += 1
+            else:
+                pending.append(t)
+    if not pending:
+        outcome.wall_time = time.perf_counter() - t_start
+        return outcome
+
+    bar = _progress(len(pending), progress, desc)
+    stored = 0
+
+    def record(method: Method, cases: Sequence[ContactCase], res: list, dt: float) -> None:
+        nonlocal stored
+        for c, (scalars, err) in zip(cases, res, strict=True):
+            store.put(c, method.name, method.settings(), scalars, err)
+            sr = store.get(c, method.name, method.settings())
+            assert sr is not None
+            outcome.results[Task(c, method).key] = sr
+            if err is None:
+                outcome.computed += 1
+            else:
+                outcome.failed += 1
+            if on_result is not None:
+                on_result(Task(c, method), sr)
+            stored += 1
+            bar.update(1)
+            if stop_after is not None and stored >= stop_after:
+                raise RunInterrupted(f"stopped after {stored} results (stop_after)")
+        outcome.method_time[method.name] = outcome.method_time.get(method.name, 0.0) + dt
+
+    try:
+        local = [t for t in pending if t.method.name in inline]
+        remote = [t for t in pending if t.method.name not in inline]
+        if scheduler is None and workers <= 1:
+            local, remote = local + remote, []
+        for m, cs in _chunks(local, chunk_size):
+            t0 = time.perf_counter()
+            res = solve_chunk(m, cs)
+            record(m, cs, res, time.perf_counter() - t0)
+        if remote:
+            chunks = _chunks(remote, chunk_size)
+            if scheduler is not None:
+                _run_dask(chunks, scheduler, record)
+            else:
+                _run_processes(chunks, workers, record)
+    finally:
+        bar.close()
+        outcome.wall_time = time.perf_counter() - t_start
+    return outcome
+
+
+def _mp_context():
+    methods = multiprocessing.get_all_start_methods()
+    return multiprocessing.get_context("fork" if "fork" in methods else "spawn")
+
+
+def _run_processes(chunks: list, workers: int, record: Callable) -> None:
+    workers = max(1, min(workers, len(chunks), os.cpu_count() or 1))
+    ex = ProcessPoolExecutor(max_workers=workers, mp_context=_mp_context())
+    futures: dict[Future, tuple[Method, list, float]] = {}
+    it = iter(chunks)
+    clean = False
+    try:
+        # keep at most 2 * workers chunks submitted: an interrupt then loses little work
+        for m, cs in it:
+            futures[ex.submit(solve_chunk, m, cs)] = (m, cs, time.perf_counter())
+            if len(futures) >= 2 * workers:
+                break
+        while futures:
+            done, _ = wait(list(futures), return_when=FIRST_COMPLETED)
+            for f in done:
+                m, cs, t0 = futures.pop(f)
+                try:
+                    res = f.result()
+                except Exception as exc:  # worker died: record the failure per case
+                    msg = f"{type(exc).__name__}: {exc}\n{traceback.format_exc(limit=2)}"
+                    res = [(None, msg)] * len(cs)
+                record(m, cs, res, time.perf_counter() - t0)
+                nxt = next(it, None)
+                if nxt is not None:
+                    futures[ex.submit(solve_chunk, *nxt)] = (nxt[0], nxt[1], time.perf_counter())
+        clean = True
+    finally:
+        for f in futures:
+            f.cancel()
+        if not clean:  # interrupted: do not wait for chunks in flight (an FE case can take minutes)
+            for p in list(getattr(ex, "_processes", {}).values()):
+                p.terminate()
+        ex.shutdown(wait=clean, cancel_futures=True)
+
+
+def _run_dask(chunks: list, scheduler: Any, record: Callable) -> None:
+    from distributed import as_completed
+
+    client, own = _dask_client(scheduler)
+    futs, meta = [], {}
+    try:
+        for m, cs in chunks:
+            f = client.submit(solve_chunk, m, cs, pure=False)
+            futs.append(f)
+            meta[f.key] = (m, cs, time.perf_counter())
+        for f in as_completed(futs):
+            m, cs, t0 = meta[f.key]
+            try:
+                res = f.result()
+            except Exception as exc:
+                res = [(None, f"{type(exc).__name__}: {exc}")] * len(cs)
+            record(m, cs, res, time.perf_counter() - t0)
+    finally:
+        client.cancel(futs)
+        if own:
+            client.close()
+
+
+def finite(x: Any) -> bool:
+    """True for a finite float (helper for callers filtering stored results)."""
+    try:
+        return math.isfinite(float(x))
+    except (TypeError, ValueError):
+        return False

@@ -1,0 +1,182 @@
+"""The runner: reuse, local processes, dask, and interruption without loss or repetition."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+from pathlib import Path
+
+import pytest
+from fake_method import FakeMethod, cases
+
+from coathertz.runner import RunInterrupted, Task, run_tasks
+from coathertz.store import ResultStore, case_key
+
+HERE = Path(__file__).resolve().parent
+
+
+def _log(path: Path) -> list[str]:
+    return path.read_text().split("\n")[:-1] if path.exists() else []
+
+
+def test_serial_run_stores_and_reuses(tmp_path):
+    log = tmp_path / "log"
+    m = FakeMethod(log=str(log))
+    tasks = [Task(c, m) for c in cases(6)]
+    with ResultStore(tmp_path / "s.sqlite", version="t") as st:
+        out = run_tasks(tasks + tasks[:2], st, workers=1, progress=False)  # duplicates solved once
+        assert (out.computed, out.reused, out.failed) == (6, 0, 0)
+        assert len(_log(log)) == 6
+        again = run_tasks(tasks, st, workers=1, progress=False)
+        assert (again.computed, again.reused) == (0, 6)
+        assert len(_log(log)) == 6
+        for t in tasks:
+            assert again.get(t.case, "fake").result["a"] == pytest.approx(float(t.case.a0s))
+
+
+def test_failures_are_stored_not_raised_and_retried_on_request(tmp_path):
+    m = FakeMethod(fail_label="c2")
+    tasks = [Task(c, m) for c in cases(4)]
+    with ResultStore(tmp_path / "s.sqlite", version="t") as st:
+        out = run_tasks(tasks, st, workers=1, progress=False)
+        assert (out.computed, out.failed) == (3, 1)
+        assert "fake failure" in out.get(tasks[2].case, "fake").error
+        assert run_tasks(tasks, st, workers=1, progress=False).reused == 4
+        assert run_tasks(tasks, st, workers=1, progress=False, retry_errors=True).failed == 1
+
+
+def test_process_pool_matches_serial(tmp_path):
+    m = FakeMethod()
+    tasks = [Task(c, m) for c in cases(8)]
+    with (ResultStore(tmp_path / "a.sqlite", version="t") as a,
+          ResultStore(tmp_path / "b.sqlite", version="t") as b):
+        ser = run_tasks(tasks, a, workers=1, progress=False)
+        par = run_tasks(tasks, b, workers=2, progress=False, chunk_size=3)
+        assert par.computed == 8
+        pids = {par.results[k].result["meta"]["pid"] for k in par.results}
+        assert os.getpid() not in pids  # solved in worker processes
+        for k in ser.results:
+            assert par.results[k].result["delta"] == ser.results[k].result["delta"]
+
+
+def test_exception_injected_midway_loses_and_repeats_nothing(tmp_path):
+    """Stop after k stored results (as a crash would), rerun: only the missing ones are solved."""
+    log = tmp_path / "log"
+    m = FakeMethod(log=str(log))
+    tasks = [Task(c, m) for c in cases(10)]
+    with ResultStore(tmp_path / "s.sqlite", version="t") as st:
+        with pytest.raises(RunInterrupted):
+            run_tasks(tasks, st, workers=1, progress=False, stop_after=4)
+        assert st.count() == 4
+        first = {r.case_key: r.created for r in st.rows()}
+        out = run_tasks(tasks, st, workers=1, progress=False)
+        assert (out.reused, out.computed) == (4, 6)
+        assert st.count() == 10
+        assert {r.case_key: r.created for r in st.rows() if r.case_key in first} == first  # untouched
+    solved = [line.split()[0] for line in _log(log)]
+    assert sorted(solved) == sorted(f"c{i}" for i in range(10))  # each case solved exactly once
+
+
+def test_process_pool_interrupted_midway(tmp_path):
+    m = FakeMethod(delay=0.02)
+    tasks = [Task(c, m) for c in cases(12)]
+    with ResultStore(tmp_path / "s.sqlite", version="t") as st:
+        with pytest.raises(RunInterrupted):
+            run_tasks(tasks, st, workers=2, progress=False, stop_after=5)
+        assert st.count() == 5
+        out = run_tasks(tasks, st, workers=2, progress=False)
+        assert (out.reused, out.computed) == (5, 7) and st.count() == 12
+
+
+SCRIPT = """
+import sys
+sys.path.insert(0, {here!r})
+from fake_method import FakeMethod, cases
+from coathertz.runner import Task, run_tasks
+from coathertz.store import ResultStore
+m = FakeMethod(delay=0.05, log={log!r})
+st = ResultStore({db!r}, version="t")
+run_tasks([Task(c, m) for c in cases(40)], st, workers=1, progress=False)
+"""
+
+
+def test_killed_subprocess_resumes(tmp_path):
+    """SIGKILL a run in a subprocess midway; a rerun keeps every stored result and solves the rest."""
+    db, log = tmp_path / "s.sqlite", tmp_path / "log"
+    script = tmp_path / "run.py"
+    script.write_text(textwrap.dedent(SCRIPT.format(here=str(HERE), log=str(log), db=str(db))))
+    proc = subprocess.Popen([sys.executable, str(script)])
+    try:
+        deadline = time.time() + 60
+        while time.time() < deadline:
+            if db.exists():
+                with ResultStore(db, version="t") as st:
+                    if st.count() >= 8:
+                        break
+            time.sleep(0.05)
+        proc.send_signal(signal.SIGKILL)
+    finally:
+        proc.wait(timeout=30)
+    with ResultStore(db, version="t") as st:
+        stored = {r.case_key: r.created for r in st.rows()}
+        assert 8 <= len(stored) < 40
+        log2 = tmp_path / "log2"
+        m = FakeMethod(delay=0.0, log=str(log2))
+        out = run_tasks([Task(c, m) for c in cases(40)], st, workers=1, progress=False)
+        assert out.reused == len(stored) and out.computed == 40 - len(stored)
+        assert {r.case_key: r.created for r in st.rows() if r.case_key in stored} == stored
+        assert st.count() == 40
+    resolved = {line.split()[0] for line in _log(log2)}
+    keys = {case_key(c): c.label for c in cases(40)}
+    assert resolved == {keys[k] for k in keys if k not in stored}  # nothing finished is repeated
+
+
+@pytest.mark.dask
+def test_dask_local_cluster(tmp_path):
+    distributed = pytest.importorskip("distributed")
+    m = FakeMethod()
+    tasks = [Task(c, m) for c in cases(6)]
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=False,
+                                  dashboard_address=None) as cluster, distributed.Client(cluster) as client:
+        with ResultStore(tmp_path / "s.sqlite", version="t") as st:
+            out = run_tasks(tasks, st, scheduler=client, progress=False, chunk_size=2)
+            assert out.computed == 6 and st.count() == 6
+            assert run_tasks(tasks, st, scheduler=client, progress=False).reused == 6
+
+
+def test_fe_method_runs_in_worker_processes(tmp_path):
+    """The real FE method pickles into the pool and its result lands in the store."""
+    from coathertz.verification._common import build_methods, elastic_case
+
+    methods, notes = build_methods("tiny", ["fem"])
+    if "fem" not in methods:
+        pytest.skip(f"FE method unavailable: {notes}")
+    case = elastic_case(3.0, 1.0)
+    with ResultStore(tmp_path / "s.sqlite", version="t") as st:
+        out = run_tasks([Task(case, methods["fem"])], st, workers=2, progress=False, inline=())
+        sr = out.get(case, "fem")
+        assert sr.ok, sr.error
+        assert sr.result["a"] == pytest.approx(float(case.a0s) * 0.72, rel=0.1)
+
+
+@pytest.mark.dask
+def test_study_on_dask_local_cluster(tmp_path, tiny_methods):
+    """A small study (fig 3, tiny) through a LocalCluster gives the same claims as locally."""
+    distributed = pytest.importorskip("distributed")
+    from coathertz.verification import get_study
+    from coathertz.verification._common import run_study
+
+    mod = get_study("fig3")
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
+                                  dashboard_address=None) as cluster, distributed.Client(cluster) as client:
+        with ResultStore(tmp_path / "d.sqlite") as st:
+            r = run_study(mod, "tiny", tiny_methods, st, {"scheduler": client, "progress": False})
+    with ResultStore(tmp_path / "l.sqlite") as st:
+        ref = run_study(mod, "tiny", tiny_methods, st, {"workers": 1, "progress": False})
+    assert r.computed == ref.computed > 0
+    expected = {c.id: c.value for c in ref.claims}
+    assert {c.id: c.value for c in r.claims} == pytest.approx(expected, nan_ok=True)

@@ -1,0 +1,62 @@
+"""The result store: keys, round trip, errors, export."""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+
+from fake_method import FakeMethod, cases
+
+from coathertz.materials import Material
+from coathertz.store import ResultStore, case_key, code_version, settings_key
+
+
+def test_case_key_ignores_labels_and_separates_physics():
+    c = cases(2)
+    assert case_key(c[0]) == case_key(c[0].replace(label="other"))
+    assert case_key(c[0]) != case_key(c[1])
+    assert case_key(c[0]) != case_key(c[0].with_thickness(2e-6))
+
+
+def test_settings_key_and_code_version():
+    assert settings_key({"a": 1, "b": 2}) == settings_key({"b": 2, "a": 1})
+    assert settings_key({"n": 64}) != settings_key({"n": 128})
+    v = code_version()
+    assert v.startswith("0.") or "+" in v
+
+
+def test_round_trip_error_and_version(tmp_path):
+    m = FakeMethod()
+    c = cases(3)
+    with ResultStore(tmp_path / "s.sqlite", version="v1") as st:
+        r = m.solve(c[0]).scalars()
+        st.put(c[0], m.name, m.settings(), r)
+        st.put(c[1], m.name, m.settings(), None, "ConvergenceError: no")
+        got = st.get(c[0], m.name, m.settings())
+        assert got.ok and math.isclose(got.result["a"], r["a"]) and got.case["W"] == 1.0
+        bad = st.get(c[1], m.name, m.settings())
+        assert not bad.ok and "ConvergenceError" in bad.error
+        assert st.get(c[2], m.name, m.settings()) is None
+        assert st.get(c[0], m.name, {"other": 1}) is None
+        assert set(st.get_many(c, m.name, m.settings())) == {case_key(c[0]), case_key(c[1])}
+        st.export_csv(tmp_path / "s.csv")
+        st.export_json(tmp_path / "s.json")
+    with ResultStore(tmp_path / "s.sqlite", version="v2") as st:  # new code version: nothing reused
+        assert st.get(c[0], m.name, m.settings()) is None
+        assert st.count() == 2  # but the old rows are kept
+    rows = list(csv.DictReader((tmp_path / "s.csv").open()))
+    assert [r["status"] for r in rows] == ["ok", "error"]
+    data = json.loads((tmp_path / "s.json").read_text())
+    assert data[0]["result"]["p0"] > 0 and data[1]["result"] is None
+
+
+def test_rigid_and_infinite_values_serialise(tmp_path):
+    from coathertz.verification._common import rigid_substrate_case
+
+    c = rigid_substrate_case(200e9, 0.5)
+    with ResultStore(tmp_path / "s.sqlite", version="v") as st:
+        st.put(c, "x", {}, {"a": 1.0, "r": math.inf})
+        got = st.get(c, "x", {})
+    assert got.case["body2"]["material"]["E"] == math.inf and got.result["r"] == math.inf
+    assert Material(1e9, 0.3).E_star > 0

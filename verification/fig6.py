@@ -1,0 +1,122 @@
+r"""Figure 6 (Section 3): Stevanovic's variables a* and tau* (eq 20) and their eq (12).
+
+The fig-3 results re-plotted as :math:`a^* = (a_{num} - a_{0s})/(a_{0c} - a_{0s})` against
+:math:`\tau^* = [(h/a_{num})\sqrt{a_{0c}/a_{0s}}]^{1/3}` (eq 20), and Stevanovic et al.'s
+approximation eq (12), :math:`\bar a(H, \gamma)` with :math:`\gamma = a_{0c}/a_{0s}`, checked
+against the numerical contact radius. E = 1 is left out (a* is 0/0 there).
+
+Paper's claim: eq (12)'s error lies in *[0, 8] % for Ec* > Es** and in *[-2.5, 0] % for
+Ec* < Es**; the curves "arguably" fall on one curve for tau* in [0.8, 1.4], more closely within
+each of the two groups.
+
+Cases: those of :mod:`fig3` (shared through the result store).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from coathertz.literature import stevanovic_elastic, stevanovic_star
+
+from . import _common as C
+from . import fig3
+
+#: The report draws no error maps / pairwise plots here: they would repeat fig3's.
+GENERIC_FIGURES = False
+NAME = "fig6"
+TITLE = "Figure 6: a* against tau* (eq 20) and Stevanovic et al.'s eq (12)"
+CLAIM = "Eq (12) errs within [0, 8] % for Ec* > Es* and [-2.5, 0] % for Ec* < Es* (Section 3)."
+RANGES = {"stiff": (0.0, 8.0), "soft": (-2.5, 0.0)}
+
+
+def cases(resolution: str) -> list[C.StudyCase]:
+    return [sc for sc in fig3.cases(resolution) if not math.isclose(sc.params["E"], 1.0)]
+
+
+def star_rows(result: C.StudyResult) -> list[dict]:
+    out = []
+    for r in result.rows:
+        if r["method"] not in C.NUMERICAL:
+            continue
+        case = next(iter(_case_of(result, r["case"])))
+        a0s, a0c, h = case.a0s, case.a0c, case.body2.coating.h
+        gamma = a0c / a0s
+        a_star, tau_star = stevanovic_star(r["a"], a0s, a0c, h)
+        a12 = float(stevanovic_elastic(r["H"], gamma)) * a0s
+        out.append({"case": r["case"], "method": r["method"], "E": r["E"], "H": r["H"],
+                    "a_star": float(a_star), "tau_star": float(tau_star),
+                    "err12": 100.0 * (a12 / r["a"] - 1.0)})
+    return out
+
+
+def _case_of(result: C.StudyResult, cid: str):
+    p = result.extra["cases"][cid]["params"]
+    yield C.elastic_case(p["E"], p["H"], p["nu_c"], p["nu_s"])
+
+
+def analyse(result: C.StudyResult) -> None:
+    rows = star_rows(result)
+    result.extra["star"] = rows
+    for ref in C.NUMERICAL:
+        for side, (lo, hi) in RANGES.items():
+            sel = [r["err12"] for r in rows if r["method"] == ref and ((r["E"] > 1) == (side == "stiff"))]
+            if not sel:
+                continue
+            mn, mx = float(np.min(sel)), float(np.max(sel))
+            worst = mx if abs(mx) >= abs(mn) else mn
+            label = "Ec* > Es*" if side == "stiff" else "Ec* < Es*"
+            result.claims.append(C.Claim(
+                f"fig6-eq12-{side}-{ref}", f"eq (12) error for {label} against {ref.upper()} (largest)",
+                worst, f"within [{lo:g}, {hi:g}] %", bool(lo - 1e-9 <= mn and mx <= hi + 1e-9), "%", 0.05,
+                f"range [{mn:.2f}, {mx:.2f}] % over {len(sel)} cases"))
+        sel = [r for r in rows if r["method"] == ref and 0.8 <= r["tau_star"] <= 1.4]
+        if len(sel) > 2:
+            spread = {}
+            for side in ("stiff", "soft"):
+                s = [r["a_star"] for r in sel if (r["E"] > 1) == (side == "stiff")]
+                spread[side] = (min(s), max(s)) if s else (math.nan, math.nan)
+            result.claims.append(C.Claim(
+                f"fig6-collapse-{ref}", f"range of a* for tau* in [0.8, 1.4], all E ({ref.upper()})",
+                max(r["a_star"] for r in sel) - min(r["a_star"] for r in sel), "(observation)", None, "",
+                0.01,
+                f"E > 1: a* in [{spread['stiff'][0]:.3f}, {spread['stiff'][1]:.3f}]; "
+                f"E < 1: a* in [{spread['soft'][0]:.3f}, {spread['soft'][1]:.3f}]"))
+
+
+def plot(result: C.StudyResult, outdir) -> list:
+    rows = result.extra.get("star", [])
+    fig, axes = C.figure(2, width=4.6, height=3.6)
+    Es = sorted({r["E"] for r in rows})
+    for i, E in enumerate(Es):
+        col = C.colour(i, len(Es))
+        for m in C.NUMERICAL:
+            pts = sorted((r["tau_star"], r["a_star"], r["H"], r["err12"]) for r in rows
+                         if r["method"] == m and math.isclose(r["E"], E))
+            if not pts:
+                continue
+            t, a, H, err = np.array(pts).T
+            kw = dict(color=col, ms=3.5 if m == "fft" else 7, mfc="none" if m == "fem" else col, lw=0.8)
+            axes[0, 0].plot(t, a, C.MARKERS[m] + ("-" if m == "fft" else ""),
+                            label=f"E = {E:.3g}" if m == "fft" and len(Es) <= 8 else None, **kw)
+            order = np.argsort(H)
+            axes[0, 1].plot(H[order], err[order], C.MARKERS[m] + ("-" if m == "fft" else ""), **kw)
+    ax = axes[0, 0]
+    ax.set_xlabel(r"$\tau^* = [(h/a_{num})\sqrt{a_{0c}/a_{0s}}]^{1/3}$")
+    ax.set_ylabel(r"$a^* = (a_{num} - a_{0s})/(a_{0c} - a_{0s})$")
+    ax.axvspan(0.8, 1.4, color="0.9", zorder=0)
+    ax.grid(alpha=0.3)
+    if len(Es) <= 8:
+        ax.legend(fontsize=7, ncol=2)
+    ax = axes[0, 1]
+    for lo, hi, col in ((0, 8, "tab:red"), (-2.5, 0, "tab:blue")):
+        ax.axhspan(lo, hi, color=col, alpha=0.08)
+    ax.set_xscale("log")
+    ax.set_xlabel(r"$H = h/a_{0s}$")
+    ax.set_ylabel("error of eq (12) [%]")
+    ax.set_title("shaded: paper's ranges (red E>1, blue E<1)", fontsize=8)
+    ax.grid(alpha=0.3, which="both")
+    fig.suptitle("Fig. 6: Stevanovic et al.'s variables (eq 20) and eq (12)", fontsize=10)
+    fig.tight_layout()
+    return C.save(fig, outdir, "fig6")
