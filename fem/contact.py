@@ -86,8 +86,30 @@ def _solve_superposed(prob: ContactProblem, solver, K, rhs1, rhs2, fixed, val1, 
     return out
 
 
+#: A repeated active set (a cycle) is accepted if its complementarity violation, relative to the
+#: largest multiplier and to the approach, is below this: the edge node's multiplier and gap are
+#: then round-off (seen with the incompressible mixed system), not a physical ambiguity.
+CYCLE_TOL = 1e-6
+
+
+def _violation(lam: np.ndarray, gap: np.ndarray, active: np.ndarray, delta: float) -> float:
+    """Relative violation of the complementarity conditions of a contact solution."""
+    lam_scale = max(float(np.max(np.abs(lam))), 1e-300)
+    v_lam = max(0.0, -float(lam[active].min())) / lam_scale if active.any() else 0.0
+    v_gap = max(0.0, -float(gap[~active].min())) / max(abs(delta), 1e-300) if (~active).any() else 0.0
+    return max(v_lam, v_gap)
+
+
 def _loop(prob: ContactProblem, solver, step, update, active: np.ndarray, maxiter: int) -> ContactSolution:
-    history = []
+    """Iterate ``step``/``update`` until the active set repeats itself.
+
+    A fixed point ends the loop. A cycle (a set seen before, not the last one) ends it too: the
+    member of the cycle with the smallest violation is returned if that violation is below
+    :data:`CYCLE_TOL`, else :class:`ConvergenceError` is raised.
+    """
+    history: list[int] = []
+    seen: dict[bytes, int] = {}
+    sols: list[tuple[ContactSolution, float]] = []
     for it in range(1, maxiter + 1):
         if not active.any():
             active = prob.g0 <= prob.g0.min()  # at least the first node touches
@@ -95,8 +117,20 @@ def _loop(prob: ContactProblem, solver, step, update, active: np.ndarray, maxite
         gap = prob.g0 - delta - u[prob.cand]
         new = update(active, lam, gap)
         history.append(int(active.sum()))
+        sol = ContactSolution(u, delta, lam, gap, active, it, history)
         if np.array_equal(new, active):
-            return ContactSolution(u, delta, lam, gap, active, it, history)
+            return sol
+        seen[active.tobytes()] = len(sols)
+        sols.append((sol, _violation(lam, gap, active, delta)))
+        key = new.tobytes()
+        if key in seen:  # cycle: sols[seen[key]:] repeat forever
+            best, v = min(sols[seen[key]:], key=lambda sv: sv[1])
+            if v < CYCLE_TOL:
+                return best
+            raise ConvergenceError(
+                f"contact active set cycles (sizes {history[seen[key]:]}) with violation {v:.2e} "
+                f">= {CYCLE_TOL:g}"
+            )
         active = new
     raise ConvergenceError(
         f"contact active set did not settle in maxiter={maxiter} iterations (sizes {history[-5:]})"
