@@ -62,3 +62,21 @@ def test_readme_numbers_are_what_predict_prints(capsys):
 def test_readme_python_runs(code, capsys):
     exec(compile(code, "README", "exec"), {})
     assert capsys.readouterr().out.strip()
+
+
+def test_readme_three_method_numbers(capsys):
+    """The numbers quoted for case A: closed form exactly as printed by predict; FFT (128^2) and
+    FE (default mesh) to the quoted digits (their convergence studies put both within 2e-4)."""
+    from coathertz.casefile import load_example
+    from coathertz.extended import predict
+    from coathertz.fem.method import FEMMethod
+    from coathertz.fft.method import FFTMethod
+
+    text = README.read_text()
+    case = load_example("keer_case_a")
+    r = predict(case)
+    assert f"δ = {r.delta * 1e6:.5f} µm, a = {r.a * 1e6:.3f} µm, p0 = {r.p0 / 1e6:.2f} MPa" in text
+    for res in (FFTMethod(n=128, keep_fields=False).solve(case), FEMMethod().solve(case)):
+        assert abs(res.delta * 1e6 - 0.15817) < 2e-5
+        assert abs(res.a * 1e6 - 37.005) < 0.01
+        assert abs(res.p0 / 1e6 - 314.92) < 0.02

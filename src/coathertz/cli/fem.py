@@ -60,14 +60,14 @@ def run(args: argparse.Namespace) -> int:
         ["p0 [MPa]", f"{res.p0 / 1e6:.5g}", f"{res.p0 / norm.p0:.5f}"],
     ]
     ax = m["axis_max_von_mises"]
-    rows.append(["max von Mises on axis [MPa]", f"{ax['value'] / 1e6:.5g}", f"z = {ax['z'] * 1e6:.4g} um"])
+    rows.append(["max von Mises on axis [MPa]", f"{ax['value'] / 1e6:.5g}", f"z = {ax['z'] * 1e6:.2f} um"])
     for side in ("coating", "substrate"):
         if f"interface_{side}" in m:
             d = m[f"interface_{side}"]
             rows.append([f"interface ({side} side) max von Mises [MPa]", f"{d['max_von_mises'] / 1e6:.5g}",
-                         f"r = {d['r_max_von_mises'] * 1e6:.4g} um"])
+                         f"r = {d['r_max_von_mises'] * 1e6:.2f} um"])
             rows.append([f"interface ({side} side) max sigma_1 [MPa]", f"{d['max_sigma_1'] / 1e6:.5g}",
-                         f"r = {d['r_max_sigma_1'] * 1e6:.4g} um"])
+                         f"r = {d['r_max_sigma_1'] * 1e6:.2f} um"])
     print(format_table(["", "value", f"/ Hertz ({norm.kind})"], rows))
     if args.vtu:
         print(f"VTU written to {args.vtu}")
