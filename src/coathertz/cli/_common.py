@@ -95,3 +95,24 @@ def format_table(header: list[str], rows: list[list[str]]) -> str:
         out.append("  ".join(str(c).rjust(w) if j else str(c).ljust(w)
                              for j, (c, w) in enumerate(zip(r, widths, strict=True))))
     return "\n".join(out)
+
+
+def result_summary(case, res) -> dict[str, Any]:
+    """JSON-ready summary of a method's :class:`~coathertz.results.ContactResult` for ``case``,
+    with the paper's bars (eq 7 normalisation)."""
+    norm = case.normalisers
+    return {
+        "case": case.describe(),
+        "label": case.label,
+        "units": "SI (m, Pa, N)",
+        "delta": res.delta,
+        "a": res.a,
+        "p0": res.p0,
+        "r_a": res.r_a,
+        "r_b": res.r_b,
+        "normalisation": norm.kind,
+        "delta_bar": res.delta / norm.delta0,
+        "a_bar": res.a / norm.a0,
+        "p_bar": res.p0 / norm.p0,
+        "meta": dict(res.meta),
+    }

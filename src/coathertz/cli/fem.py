@@ -22,7 +22,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from coathertz.casefile import load_case
-    from coathertz.cli._common import format_table, to_json
+    from coathertz.cli._common import format_table, result_summary, to_json
     from coathertz.fem.method import FEMMethod
 
     case = load_case(args.case)
@@ -33,19 +33,7 @@ def run(args: argparse.Namespace) -> int:
 
         write_vtu(args.vtu, model, path.x)
     norm = case.normalisers
-    out = {
-        "case": case.describe(),
-        "label": case.label,
-        "units": "SI (m, Pa, N)",
-        "delta": res.delta,
-        "a": res.a,
-        "p0": res.p0,
-        "normalisation": norm.kind,
-        "delta_bar": res.delta / norm.delta0,
-        "a_bar": res.a / norm.a0,
-        "p_bar": res.p0 / norm.p0,
-        "meta": dict(res.meta),
-    }
+    out = result_summary(case, res)
     if args.json:
         print(to_json(out))
         return 0

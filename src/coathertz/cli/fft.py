@@ -26,7 +26,7 @@ def run(args: argparse.Namespace) -> int:
     import numpy as np
 
     from coathertz.casefile import load_case
-    from coathertz.cli._common import format_table, to_json
+    from coathertz.cli._common import format_table, result_summary, to_json
     from coathertz.fft.grid import DEFAULT_N
     from coathertz.fft.method import FFTMethod
 
@@ -40,21 +40,7 @@ def run(args: argparse.Namespace) -> int:
     if args.save_fields:
         np.savez_compressed(args.save_fields, **{k: np.asarray(v) for k, v in res.fields.items()})
     norm = case.normalisers
-    out = {
-        "case": case.describe(),
-        "label": case.label,
-        "units": "SI (m, Pa, N)",
-        "delta": res.delta,
-        "a": res.a,
-        "p0": res.p0,
-        "r_a": res.r_a,
-        "r_b": res.r_b,
-        "normalisation": norm.kind,
-        "delta_bar": res.delta / norm.delta0,
-        "a_bar": res.a / norm.a0,
-        "p_bar": res.p0 / norm.p0,
-        "meta": dict(res.meta),
-    }
+    out = result_summary(case, res)
     if args.json:
         print(to_json(out))
         return 0
@@ -66,7 +52,7 @@ def run(args: argparse.Namespace) -> int:
           f" {m['wall_time'] * 1e3:.0f} ms")
     rows = [
         ["delta [um]", f"{res.delta * 1e6:.5g}", f"{res.delta / norm.delta0:.5f}"],
-        ["a [um] (edge fit)", f"{res.a * 1e6:.5g}", f"{res.a / norm.a0:.5f}"],
+        [f"a [um] ({m['radius_estimator']})", f"{res.a * 1e6:.5g}", f"{res.a / norm.a0:.5f}"],
         ["a_num = sqrt(S/pi) [um]", f"{m['a_num'] * 1e6:.5g}", f"{m['a_num'] / norm.a0:.5f}"],
         ["p0 [MPa]", f"{res.p0 / 1e6:.5g}", f"{res.p0 / norm.p0:.5f}"],
     ]

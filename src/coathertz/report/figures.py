@@ -17,16 +17,9 @@ QLABEL = {"a": "a", "p": "$p_0$", "delta": r"$\delta$", "r_a": "$r_a$", "r_b": "
 
 
 def _save(fig, outdir: Path, name: str) -> list[Path]:
-    import matplotlib.pyplot as plt
+    from coathertz.verification._common import save
 
-    outdir.mkdir(parents=True, exist_ok=True)
-    paths = []
-    for ext in ("png", "svg"):
-        p = outdir / f"{name}.{ext}"
-        fig.savefig(p, dpi=150 if ext == "png" else None, bbox_inches="tight")
-        paths.append(p)
-    plt.close(fig)
-    return paths
+    return save(fig, outdir, name)
 
 
 def error_heatmaps(result, outdir: str | Path) -> list[Path]:
