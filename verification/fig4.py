@@ -116,4 +116,13 @@ def plot(result: C.StudyResult, outdir) -> list:
         axes[0, 0].legend(fontsize=7, ncol=2, title="FFT (o), FE (□)", title_fontsize=7)
     fig.suptitle("Fig. 4: alpha with which eqs (1), (17), (18) reproduce each numerical result", fontsize=10)
     fig.tight_layout()
+    if len(Es) > 8:  # too many curves for a legend: a colour bar keyed by E (FFT o, FE □)
+        import matplotlib as mpl
+
+        sm = mpl.cm.ScalarMappable(norm=mpl.colors.Normalize(0, len(Es) - 1), cmap="viridis")
+        shown = (0.25, 1 / 3, 0.8, 1, 2, 3, 4)
+        ticks = [i for i, E in enumerate(Es) if any(math.isclose(E, t) for t in shown)]
+        cb = fig.colorbar(sm, ax=list(axes[0]), ticks=ticks, fraction=0.02, pad=0.01)
+        cb.ax.set_yticklabels([f"{Es[i]:.3g}" for i in ticks])
+        cb.set_label(r"$E = E_c^*/E_s^*$ (FFT o, FE □)")
     return C.save(fig, outdir, "fig4")
