@@ -87,28 +87,29 @@ def constants_from_ratio(E, nu_c, nu_s):
     return lam, kappa
 
 
-def _warn_range(H, E=None, *, what: str = "") -> None:
-    H = np.asarray(H, dtype=float)
-    n_H = int(np.count_nonzero((H < H_RANGE[0] * (1 - 1e-9)) | (H > H_RANGE[1] * (1 + 1e-9))))
-    if n_H:
+def _warn_outside(x, bounds: tuple[float, float], label: str, symbol: str, held: str) -> None:
+    """Warn once if any of ``x`` lies outside ``bounds`` (a relative slack of 1e-9 at the ends)."""
+    x = np.asarray(x, dtype=float)
+    n = int(np.count_nonzero((x < bounds[0] * (1 - 1e-9)) | (x > bounds[1] * (1 + 1e-9))))
+    if n:
         warnings.warn(
-            f"{what}H outside the fitted range [{H_RANGE[0]:g}, {H_RANGE[1]:g}] of the Appendix A "
-            f"alpha curves at {n_H} point(s) (H from {H.min():.3g} to {H.max():.3g}); "
-            "alpha is held at its end value there",
+            f"{label} at {n} point(s) ({symbol} from {x.min():.3g} to {x.max():.3g}); {held}",
             FittedRangeWarning,
-            stacklevel=3,
+            stacklevel=4,
         )
+
+
+def _warn_range(H, E=None, *, what: str = "") -> None:
+    _warn_outside(
+        H, H_RANGE,
+        f"{what}H outside the fitted range [{H_RANGE[0]:g}, {H_RANGE[1]:g}] of the Appendix A alpha curves",
+        "H", "alpha is held at its end value there",
+    )
     if E is not None:
-        E = np.asarray(E, dtype=float)
-        n_E = int(np.count_nonzero((E < E_RANGE[0] * (1 - 1e-9)) | (E > E_RANGE[1] * (1 + 1e-9))))
-        if n_E:
-            warnings.warn(
-                f"{what}modulus ratio E = Ec*/Es* outside the fitted range [1/4, 4] of eq (19)/(21) "
-                f"at {n_E} point(s) (E from {E.min():.3g} to {E.max():.3g}); alpha is held at "
-                "its value at the end of the range",
-                FittedRangeWarning,
-                stacklevel=3,
-            )
+        _warn_outside(
+            E, E_RANGE, f"{what}modulus ratio E = Ec*/Es* outside the fitted range [1/4, 4] of eq (19)/(21)",
+            "E", "alpha is held at its value at the end of the range",
+        )
 
 
 def _warn_nu(nu_c: float, nu_s: float | None) -> None:

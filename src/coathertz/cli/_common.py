@@ -116,3 +116,12 @@ def result_summary(case, res) -> dict[str, Any]:
         "p_bar": res.p0 / norm.p0,
         "meta": dict(res.meta),
     }
+
+
+def print_json_or_header(case, res, as_json: bool) -> bool:
+    """Print the JSON summary (and return True) or the human-readable case header (False)."""
+    if as_json:
+        print(to_json(result_summary(case, res)))
+        return True
+    print(f"case: {case.label or '(unnamed)'}\n  {case.describe()}")
+    return False

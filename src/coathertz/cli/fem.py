@@ -22,7 +22,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from coathertz.casefile import load_case
-    from coathertz.cli._common import format_table, result_summary, to_json
+    from coathertz.cli._common import format_table, print_json_or_header
     from coathertz.fem.method import FEMMethod
 
     case = load_case(args.case)
@@ -32,13 +32,10 @@ def run(args: argparse.Namespace) -> int:
         from coathertz.fem.io import write_vtu
 
         write_vtu(args.vtu, model, path.x)
-    norm = case.normalisers
-    out = result_summary(case, res)
-    if args.json:
-        print(to_json(out))
+    if print_json_or_header(case, res, args.json):
         return 0
+    norm = case.normalisers
     m = res.meta
-    print(f"case: {case.label or '(unnamed)'}\n  {case.describe()}")
     print(f"  mesh {args.mesh}: {m['elements']} Q2 elements, {m['dofs']} dofs, "
           f"{m['elements_across_a']:.0f} elements across a; solver {m['solver']}, "
           f"{m['contact']} {m['contact_iterations']} iterations, {m['wall_time']:.2f} s")

@@ -26,7 +26,7 @@ def run(args: argparse.Namespace) -> int:
     import numpy as np
 
     from coathertz.casefile import load_case
-    from coathertz.cli._common import format_table, result_summary, to_json
+    from coathertz.cli._common import format_table, print_json_or_header
     from coathertz.fft.grid import DEFAULT_N
     from coathertz.fft.method import FFTMethod
 
@@ -39,13 +39,10 @@ def run(args: argparse.Namespace) -> int:
     res = method.solve(case)
     if args.save_fields:
         np.savez_compressed(args.save_fields, **{k: np.asarray(v) for k, v in res.fields.items()})
-    norm = case.normalisers
-    out = result_summary(case, res)
-    if args.json:
-        print(to_json(out))
+    if print_json_or_header(case, res, args.json):
         return 0
+    norm = case.normalisers
     m = res.meta
-    print(f"case: {case.label or '(unnamed)'}\n  {case.describe()}")
     g = m["grid"]
     print(f"  grid {g['nx']} x {g['ny']}, dx = {g['dx'] * 1e6:.4g} um, dy = {g['dy'] * 1e6:.4g} um;"
           f" {m['iterations']} CG iterations, residual {m['residual']:.1e},"
