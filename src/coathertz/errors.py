@@ -1,18 +1,35 @@
-"""Exceptions and warnings shared by every part of coathertz."""
+"""Exceptions and warnings shared by every part of coathertz.
+
+Every error a user can cause is a :class:`CoatHertzError` (the CLI prints its message and
+exits with status 2); :class:`ConvergenceError` and :class:`StoreError` are the other two
+kinds the CLI reports without a traceback.
+"""
 
 from __future__ import annotations
 
 
 class CoatHertzError(ValueError):
-    """Invalid input: the message names the parameter and its valid range."""
+    """Invalid input: the message names the body, the parameter and its valid range."""
 
 
 class ConvergenceError(RuntimeError):
     """An iterative solver did not reach its tolerance within its iteration cap."""
 
 
+class StoreError(CoatHertzError):
+    """The result store cannot be used (damaged, unwritable, or in use by another run)."""
+
+
 class FittedRangeWarning(UserWarning):
     """A predictor was evaluated outside the range its fitted curves cover."""
+
+
+class ModelValidityWarning(UserWarning):
+    """A result lies outside the assumptions of the model (half-space, small strain: a/R <= 0.1).
+
+    The number is still returned; the warning's text is also recorded in
+    ``result.meta["validity"]`` (see :mod:`coathertz.validity`).
+    """
 
 
 def check_positive(name: str, value: float, *, allow_inf: bool = False) -> None:

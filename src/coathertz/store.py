@@ -17,14 +17,24 @@ nothing that finished; a rerun with the same key reuses them. SQLite from the st
 library, WAL journal, one writer (the process that runs the study). Failed cases are stored
 too (``status = 'error'`` with the message) so that a rerun does not retry a case that cannot
 converge, unless asked to (``retry_errors``).
+
+Integrity and exclusivity (:func:`open_run_store`, used by ``coathertz verify``):
+
+* a damaged file (truncated, overwritten) raises :class:`~coathertz.errors.StoreError` naming
+  the file; with ``recover=True`` (``--recover-store``) the damaged file is moved aside to
+  ``store.sqlite.damaged-<UTC timestamp>`` (kept, never deleted) and a new store is started;
+* one run at a time per store: an exclusive lock (``store.sqlite.lock``, holding the pid) makes a
+  second run on the same store stop with a clear message; a lock left by a dead process is
+  taken over (the operating system releases ``flock`` locks when their holder dies).
 """
 
 from __future__ import annotations
 
 import csv
+import datetime
 import hashlib
 import json
-import math
+import os
 import sqlite3
 import time
 from collections.abc import Iterable, Iterator, Mapping
@@ -34,6 +44,10 @@ from pathlib import Path
 from typing import Any
 
 from coathertz.case import ContactCase
+from coathertz.errors import StoreError
+from coathertz.jsonsafe import dumps as _json_dumps
+from coathertz.jsonsafe import loads as _loads
+from coathertz.jsonsafe import to_jsonable
 from coathertz.materials import Body, Material
 
 SCHEMA = """
@@ -57,8 +71,7 @@ _NOT_NUMERICAL = ("report", "cli", "store.py", "runner.py", "__pycache__")
 
 
 def _num(x: float) -> Any:
-    x = float(x)
-    return x if math.isfinite(x) else str(x)
+    return to_jsonable(float(x))
 
 
 def _material_dict(m: Material) -> dict:
@@ -79,7 +92,7 @@ def case_dict(case: ContactCase) -> dict:
 
 
 def _hash(obj: Any) -> str:
-    text = json.dumps(obj, sort_keys=True, separators=(",", ":"), default=str)
+    text = json.dumps(obj, sort_keys=True, separators=(",", ":"), default=str)  # keys: keep as is
     return hashlib.sha256(text.encode()).hexdigest()[:32]
 
 
@@ -140,35 +153,8 @@ class StoredResult:
         return self.status == "ok"
 
 
-def _loads(text: str | None) -> Any:
-    if text is None:
-        return None
-
-    def fix(v: Any) -> Any:
-        if isinstance(v, str) and v in ("inf", "-inf", "nan"):
-            return float(v)
-        if isinstance(v, dict):
-            return {k: fix(x) for k, x in v.items()}
-        if isinstance(v, list):
-            return [fix(x) for x in v]
-        return v
-
-    return fix(json.loads(text))
-
-
 def _dumps(obj: Any) -> str:
-    def fix(v: Any) -> Any:
-        if isinstance(v, float) and not math.isfinite(v):
-            return str(v)
-        if isinstance(v, dict):
-            return {str(k): fix(x) for k, x in v.items()}
-        if isinstance(v, list | tuple):
-            return [fix(x) for x in v]
-        if hasattr(v, "item") and callable(v.item):  # numpy scalars
-            return fix(v.item())
-        return v
-
-    return json.dumps(fix(obj), sort_keys=True, default=str)
+    return _json_dumps(obj, sort_keys=True)
 
 
 class ResultStore:
@@ -184,18 +170,37 @@ class ResultStore:
 
     def __init__(self, path: str | Path = ":memory:", version: str | None = None) -> None:
         self.path = str(path)
+        self._lock: _StoreLock | None = None
         if self.path != ":memory:":
-            Path(self.path).parent.mkdir(parents=True, exist_ok=True)
+            p = Path(self.path)
+            if p.is_dir():
+                raise StoreError(f"result store {self.path} is a directory, not a store file")
+            try:
+                p.parent.mkdir(parents=True, exist_ok=True)
+            except OSError as exc:
+                raise StoreError(f"cannot create the folder of the result store {self.path}: "
+                                 f"{exc.strerror or exc}") from exc
         self.version = version or code_version()
-        self._db = sqlite3.connect(self.path, timeout=30.0)
-        if self.path != ":memory:":
-            self._db.execute("PRAGMA journal_mode=WAL")
-        self._db.execute(SCHEMA)
-        self._db.commit()
+        try:
+            self._db = sqlite3.connect(self.path, timeout=30.0)
+        except sqlite3.Error as exc:
+            raise StoreError(f"cannot open the result store {self.path}: {exc}") from exc
+        try:
+            if self.path != ":memory:":
+                _check_integrity(self._db, self.path)  # before anything writes to the file
+                self._db.execute("PRAGMA journal_mode=WAL")
+            self._db.execute(SCHEMA)
+            self._db.commit()
+        except sqlite3.Error as exc:
+            self._db.close()
+            raise _store_error(self.path, exc) from exc
 
     # -- context manager ---------------------------------------------------------------
     def close(self) -> None:
         self._db.close()
+        if self._lock is not None:
+            self._lock.release()
+            self._lock = None
 
     def __enter__(self) -> ResultStore:
         return self
@@ -245,12 +250,16 @@ class ResultStore:
     ) -> None:
         """Store (and commit) one result, or the error of a failed case."""
         ck, m, sk, v = self.key(case, method, settings)
-        self._db.execute(
-            "INSERT OR REPLACE INTO results VALUES (?,?,?,?,?,?,?,?,?,?)",
-            (ck, m, sk, v, "ok" if error is None else "error", _dumps(case_dict(case)),
-             _dumps(dict(settings)), None if result is None else _dumps(dict(result)), error, time.time()),
-        )
-        self._db.commit()
+        try:
+            self._db.execute(
+                "INSERT OR REPLACE INTO results VALUES (?,?,?,?,?,?,?,?,?,?)",
+                (ck, m, sk, v, "ok" if error is None else "error", _dumps(case_dict(case)),
+                 _dumps(dict(settings)), None if result is None else _dumps(dict(result)), error,
+                 time.time()),
+            )
+            self._db.commit()
+        except sqlite3.Error as exc:
+            raise _store_error(self.path, exc) from exc
 
     def count(self, method: str | None = None, status: str | None = None) -> int:
         q, args = "SELECT COUNT(*) FROM results WHERE 1=1", []
@@ -299,3 +308,163 @@ class ResultStore:
                             *(res.get(k, "") for k in ("delta", "a", "p0", "r_a", "r_b", "W")),
                             r.error or "", _dumps(r.case)])
         return path
+
+
+# -- integrity, recovery and the one-run-at-a-time lock --------------------------------------
+RECOVER_HINT = "--recover-store"
+
+
+def _check_integrity(db: sqlite3.Connection, path: str) -> None:
+    """Raise ``sqlite3.DatabaseError`` if SQLite finds the file damaged (``quick_check``)."""
+    rows = db.execute("PRAGMA quick_check").fetchall()
+    if rows != [("ok",)]:
+        raise sqlite3.DatabaseError("; ".join(str(r[0]) for r in rows[:3]))
+
+
+def _store_error(path: str, exc: sqlite3.Error) -> StoreError:
+    text = str(exc)
+    if isinstance(exc, sqlite3.OperationalError) and ("readonly" in text or "unable to open" in text
+                                                       or "disk I/O" in text):
+        return StoreError(f"cannot write the result store {path} ({text}); choose a writable "
+                          "folder with --out or --store")
+    return StoreError(
+        f"the result store {path} is damaged ({text}); nothing was changed. Run the same command "
+        f"with {RECOVER_HINT} to move it aside to {path}.damaged-<timestamp> (kept) and recompute, "
+        "or give another --store"
+    )
+
+
+def move_aside(path: str | Path) -> Path:
+    """Rename a damaged store (and its ``-wal``/``-shm`` files) to ``PATH.damaged-<UTC time>``."""
+    path = Path(path)
+    stamp = datetime.datetime.now(datetime.UTC).strftime("%Y%m%dT%H%M%SZ")
+    target = path.with_name(f"{path.name}.damaged-{stamp}")
+    n = 1
+    while target.exists():
+        target = path.with_name(f"{path.name}.damaged-{stamp}-{n}")
+        n += 1
+    path.rename(target)
+    for suffix in ("-wal", "-shm"):
+        side = path.with_name(path.name + suffix)
+        if side.exists():
+            side.rename(target.with_name(target.name + suffix))
+    return target
+
+
+#: Lock file descriptors held by this process; worker processes close their inherited copies
+#: (``coathertz.runner``), so that only the run itself holds the lock.
+HELD_LOCK_FDS: set[int] = set()
+
+
+class _StoreLock:
+    """Exclusive, pid-stamped lock file ``<store>.lock`` (see :func:`open_run_store`)."""
+
+    def __init__(self, store_path: str | Path) -> None:
+        self.path = Path(f"{store_path}.lock")
+        self.fd: int | None = None
+
+    def acquire(self) -> None:
+        try:
+            fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o644)
+        except OSError as exc:
+            raise StoreError(f"cannot create the lock file {self.path}: {exc.strerror or exc}") from exc
+        try:
+            import fcntl
+        except ImportError:  # pragma: no cover - not Linux/macOS: pid check only
+            fcntl = None
+        if fcntl is not None:
+            try:
+                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except OSError:
+                holder = self._holder(fd)
+                os.close(fd)
+                raise StoreError(self._busy(holder)) from None
+        else:  # pragma: no cover
+            holder = self._holder(fd)
+            if holder and holder[0] != os.getpid() and _pid_alive(holder[0]):
+                os.close(fd)
+                raise StoreError(self._busy(holder))
+        os.ftruncate(fd, 0)
+        os.write(fd, f"{os.getpid()} {time.time():.0f}\n".encode())
+        self.fd = fd
+        HELD_LOCK_FDS.add(fd)
+
+    def _busy(self, holder: tuple[int, float] | None) -> str:
+        who = "another coathertz run"
+        if holder:
+            started = datetime.datetime.fromtimestamp(holder[1], datetime.UTC).strftime("%H:%M:%S UTC")
+            who += f" (pid {holder[0]}, started {started})"
+        store = str(self.path)[: -len(".lock")]
+        return (f"{who} is using the result store {store}; wait for it to finish, or give this run "
+                "another --out (or --store). Two runs on one store would solve the same cases twice")
+
+    @staticmethod
+    def _holder(fd: int) -> tuple[int, float] | None:
+        try:
+            os.lseek(fd, 0, os.SEEK_SET)
+            pid, started = os.read(fd, 100).decode().split()[:2]
+            return int(pid), float(started)
+        except (OSError, ValueError):
+            return None
+
+    def release(self) -> None:
+        if self.fd is None:
+            return
+        HELD_LOCK_FDS.discard(self.fd)
+        try:
+            os.ftruncate(self.fd, 0)
+        finally:
+            os.close(self.fd)  # releases the flock
+            self.fd = None
+
+
+def _pid_alive(pid: int) -> bool:  # pragma: no cover - fallback without fcntl
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def open_run_store(path: str | Path, *, recover: bool = False, version: str | None = None,
+                   note=None) -> ResultStore:
+    """Open the store of a run: exclusive (one run per store), integrity-checked.
+
+    Parameters
+    ----------
+    path
+        Store file.
+    recover
+        If the file is damaged, move it aside (:func:`move_aside`, the file is kept) and start a
+        new store; otherwise a damaged file raises :class:`StoreError`.
+    note
+        Callable receiving a one-line message when a damaged store was moved aside.
+    """
+    path = Path(path)
+    if path.is_dir():
+        raise StoreError(f"result store {path} is a directory, not a store file")
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise StoreError(f"cannot create the folder of the result store {path}: "
+                         f"{exc.strerror or exc}") from exc
+    lock = _StoreLock(path)
+    lock.acquire()
+    try:
+        try:
+            store = ResultStore(path, version)
+        except StoreError as exc:
+            if not recover or not path.exists() or "damaged" not in str(exc):
+                raise
+            moved = move_aside(path)
+            if note is not None:
+                note(f"the result store {path} was damaged ({exc.__cause__}); moved it aside to "
+                     f"{moved} (kept) and started a new store")
+            store = ResultStore(path, version)
+    except BaseException:
+        lock.release()
+        raise
+    store._lock = lock
+    return store
