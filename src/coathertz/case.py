@@ -230,9 +230,23 @@ class ContactCase:
             raise CoatHertzError("the two coated bodies have different E = Ec*/Es*")
         return coated[0].modulus_ratio
 
+    def _radius_text(self) -> str:
+        """The geometry as a reader needs it: one R for a circular contact, saying when it is
+        the equivalent radius of two curved bodies (1/R = 1/R1 + 1/R2); relative radii else."""
+        def mm(x: float) -> str:
+            return "inf" if math.isinf(x) else f"{x * 1e3:.4g} mm"
+
+        curved = [b for b in (self.body1, self.body2) if math.isfinite(b.Rx) or math.isfinite(b.Ry)]
+        if self.is_circular:
+            if len(curved) == 2 and all(b.Rx == b.Ry for b in curved):
+                return (f"R={mm(self.R)} (equivalent radius, 1/R = 1/R1 + 1/R2; "
+                        f"R1={mm(self.body1.Rx)}, R2={mm(self.body2.Rx)})")
+            return f"R={mm(self.R)}"
+        return f"Rx={mm(self.Rx)} Ry={mm(self.Ry)} (relative radii, eq 3)"
+
     def describe(self) -> str:
         """One-line human-readable summary (report labels)."""
-        parts = [f"W={self.W:g} N", f"Rx={self.Rx * 1e3:.4g} mm", f"Ry={self.Ry * 1e3:.4g} mm"]
+        parts = [f"W={self.W:g} N", self._radius_text()]
         for i, b in enumerate((self.body1, self.body2), start=1):
             sub = "rigid" if b.material.is_rigid else f"E={b.material.E / 1e9:.4g} GPa nu={b.material.nu:g}"
             txt = f"body{i}: {sub}"
@@ -241,3 +255,33 @@ class ContactCase:
                 txt += f" + coating E={c.material.E / 1e9:.4g} GPa nu={c.material.nu:g} h={c.h * 1e6:.4g} um"
             parts.append(txt)
         return "; ".join(parts)
+
+    # -- two identical bodies ------------------------------------------------------------
+    #: The approach of the pair is this many times the approach of its equivalent problem.
+    IDENTICAL_PAIR_DELTA_FACTOR = 2.0
+
+    @property
+    def is_identical_pair(self) -> bool:
+        """Two identical elastic bodies in a circular contact (same substrate, coating and
+        thickness, hence the same radius of each other's image)."""
+        b1, b2 = self.body1, self.body2
+        return (self.is_circular and not b1.is_rigid and b1.material == b2.material
+                and b1.coating == b2.coating)
+
+    def identical_pair_equivalent(self) -> ContactCase | None:
+        """The exactly equivalent single-body problem of two identical bodies, or ``None``.
+
+        Under the half-space assumption both bodies carry the same pressure and deform alike,
+        so the pair is one of them, as a (coated) half-space, pressed by a rigid sphere of radius
+        ``2 R`` (``R`` the equivalent radius of the pair) with the same load; the pair's approach
+        is :attr:`IDENTICAL_PAIR_DELTA_FACTOR` (2) times the equivalent's, ``a`` and ``p0`` are
+        the same.
+        """
+        if not self.is_identical_pair:
+            return None
+        from coathertz.materials import RIGID
+
+        b1 = self.body1
+        R2 = 2.0 * self.R
+        return ContactCase(Body(RIGID, None, R2, R2, name="rigid sphere"), Body(b1.material, b1.coating),
+                           self.W, label=f"{self.label} (equivalent)" if self.label else "")

@@ -32,22 +32,47 @@ _BODY_KEYS = {"material", "coating", "R", "Rx", "Ry", "name"}
 _TOP_KEYS = {"label", "W", "theta", "body1", "body2"}
 
 
+def quantity(text: Any, dimension: str, name: str, *, minimum: str = ">0", allow_inf: bool = False) -> float:
+    """Parse ``text`` (:func:`~coathertz.units.parse_quantity`) and check its range, quoting
+    the value as the user wrote it in the message.
+
+    ``minimum`` is ``">0"`` (strictly positive) or ``">=0"``; ``allow_inf`` admits ``"inf"``.
+    """
+    v = parse_quantity(text, dimension, name=name)
+    bad = math.isnan(v) or (v <= 0 if minimum == ">0" else v < 0) or (math.isinf(v) and not allow_inf)
+    if bad:
+        lo = "0 < " if minimum == ">0" else "0 <= "
+        hi = " <= inf ('inf': flat)" if allow_inf else " < inf"
+        raise CoatHertzError(f"{name} must satisfy {lo}{name.split()[-1]}{hi}, got {text!r}")
+    return v
+
+
+def _where(where: str) -> str:
+    """``body2.coating`` -> ``[body2] coating``; ``body1.material`` -> ``[body1] material``."""
+    table, _, rest = where.partition(".")
+    return f"[{table}] {rest.replace('.', ' ')}".strip()
+
+
 def _material(spec: Any, where: str) -> Material:
+    w = _where(where)
     if spec == "rigid":
         return RIGID
     if not isinstance(spec, dict):
-        raise CoatHertzError(f"{where}: expected 'rigid' or a table {{ E = \"...\", nu = ... }}")
+        raise CoatHertzError(f"{w}: expected 'rigid' or a table {{ E = \"...\", nu = ... }}, got {spec!r}")
     unknown = set(spec) - {"E", "nu", "name", "h"}
     if unknown:
-        raise CoatHertzError(f"{where}: unknown keys {sorted(unknown)}")
+        raise CoatHertzError(f"{w}: unknown keys {sorted(unknown)}; allowed ['E', 'name', 'nu']")
     for key in ("E", "nu"):
         if key not in spec:
-            raise CoatHertzError(f"{where}: missing {key}")
-    E = parse_quantity(spec["E"], "pressure", name=f"{where}.E")
+            raise CoatHertzError(f"{w}: missing {key}")
+    E = quantity(spec["E"], "pressure", f"{w} E", allow_inf=True)
     nu = spec["nu"]
     if not isinstance(nu, int | float) or isinstance(nu, bool):
-        raise CoatHertzError(f"{where}.nu must be a plain number in (-1, 0.5], got {nu!r}")
-    return Material(E, nu, name=str(spec.get("name", "")))
+        raise CoatHertzError(f"{w} nu must be a plain number in (-1, 0.5], got {nu!r}")
+    try:
+        return Material(E, nu, name=str(spec.get("name", "")))
+    except CoatHertzError as exc:
+        raise CoatHertzError(f"{w}: {exc}") from None
 
 
 def _body(spec: Any, where: str) -> Body:
@@ -57,23 +82,30 @@ def _body(spec: Any, where: str) -> Body:
     if unknown:
         raise CoatHertzError(f"[{where}]: unknown keys {sorted(unknown)}; allowed {sorted(_BODY_KEYS)}")
     if "material" not in spec:
-        raise CoatHertzError(f"[{where}]: missing 'material'")
-    material = _material(spec["material"], f"{where}.material")
+        raise CoatHertzError(f"[{where}]: missing 'material' (the substrate: 'rigid' or {{ E, nu }})")
+    material = _material(spec["material"], f"{where}.substrate material")
     coating = None
     if "coating" in spec:
         c = spec["coating"]
         if not isinstance(c, dict) or "h" not in c:
-            raise CoatHertzError(f"{where}.coating must be a table with E, nu and h")
-        coating = Coating(_material({k: v for k, v in c.items() if k != "h"}, f"{where}.coating"),
-                          parse_quantity(c["h"], "length", name=f"{where}.coating.h"))
+            raise CoatHertzError(f"[{where}] coating must be a table with E, nu and h, got {c!r}")
+        cmat = _material({k: v for k, v in c.items() if k != "h"}, f"{where}.coating")
+        h = quantity(c["h"], "length", f"[{where}] coating thickness h", minimum=">=0")
+        try:
+            coating = Coating(cmat, h)
+        except CoatHertzError as exc:
+            raise CoatHertzError(f"[{where}] coating: {exc}") from None
     if "R" in spec and ("Rx" in spec or "Ry" in spec):
         raise CoatHertzError(f"[{where}]: give either R or Rx/Ry, not both")
     if "R" in spec:
-        Rx = Ry = parse_quantity(spec["R"], "length", name=f"{where}.R")
+        Rx = Ry = quantity(spec["R"], "length", f"[{where}] sphere radius R", allow_inf=True)
     else:
-        Rx = parse_quantity(spec.get("Rx", math.inf), "length", name=f"{where}.Rx")
-        Ry = parse_quantity(spec.get("Ry", math.inf), "length", name=f"{where}.Ry")
-    return Body(material, coating, Rx, Ry, name=str(spec.get("name", "")))
+        Rx = quantity(spec.get("Rx", math.inf), "length", f"[{where}] radius Rx", allow_inf=True)
+        Ry = quantity(spec.get("Ry", math.inf), "length", f"[{where}] radius Ry", allow_inf=True)
+    try:
+        return Body(material, coating, Rx, Ry, name=str(spec.get("name", "")))
+    except CoatHertzError as exc:
+        raise CoatHertzError(f"[{where}]: {exc}") from None
 
 
 def case_from_dict(data: dict) -> ContactCase:
@@ -84,7 +116,7 @@ def case_from_dict(data: dict) -> ContactCase:
     for key in ("W", "body1", "body2"):
         if key not in data:
             raise CoatHertzError(f"case file: missing '{key}'")
-    W = parse_quantity(data["W"], "force", name="W")
+    W = quantity(data["W"], "force", "load W")
     theta = parse_quantity(data.get("theta", 0.0), "angle", name="theta")
     return ContactCase(_body(data["body1"], "body1"), _body(data["body2"], "body2"), W, theta,
                        label=str(data.get("label", "")))
@@ -96,10 +128,20 @@ def load_case(path: str | Path) -> ContactCase:
     if text.startswith("example:"):
         return load_example(text.split(":", 1)[1])
     p = Path(path)
-    if not p.is_file():
-        raise CoatHertzError(f"case file {text!r} does not exist (built-ins: {examples()})")
+    if p.is_dir():
+        raise CoatHertzError(f"case file {text!r} is a directory; give a TOML case file or example:NAME")
+    if not p.exists():
+        raise CoatHertzError(f"case file {text!r} does not exist (built-ins: "
+                             f"{', '.join('example:' + e for e in examples())})")
     try:
-        data = tomllib.loads(p.read_text())
+        raw = p.read_bytes()
+    except OSError as exc:
+        raise CoatHertzError(f"cannot read case file {text!r}: {exc.strerror or exc}") from exc
+    try:
+        data = tomllib.loads(raw.decode("utf-8"))
+    except UnicodeDecodeError as exc:
+        raise CoatHertzError(f"case file {text!r} is not a text (UTF-8 TOML) file: "
+                             f"byte {exc.start} cannot be decoded") from None
     except tomllib.TOMLDecodeError as exc:
         raise CoatHertzError(f"case file {text!r} is not valid TOML: {exc}") from exc
     return case_from_dict(data)

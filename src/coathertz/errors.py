@@ -33,7 +33,10 @@ class ModelValidityWarning(UserWarning):
 
 
 def check_positive(name: str, value: float, *, allow_inf: bool = False) -> None:
-    """Raise :class:`CoatHertzError` unless ``0 < value`` (finite unless ``allow_inf``)."""
+    """Raise :class:`CoatHertzError` unless ``0 < value`` (finite unless ``allow_inf``).
+
+    ``name`` may carry words before the symbol ("radius R"); the range uses the symbol.
+    """
     import math
 
     try:
@@ -41,5 +44,6 @@ def check_positive(name: str, value: float, *, allow_inf: bool = False) -> None:
     except (TypeError, ValueError) as exc:
         raise CoatHertzError(f"{name} must be a number > 0, got {value!r}") from exc
     if math.isnan(v) or v <= 0 or (math.isinf(v) and not allow_inf):
-        rng = f"0 < {name} <= inf" if allow_inf else f"0 < {name} < inf"
+        sym = name.split()[-1]
+        rng = f"0 < {sym} <= inf" if allow_inf else f"0 < {sym} < inf"
         raise CoatHertzError(f"{name} must satisfy {rng}, got {value!r}")

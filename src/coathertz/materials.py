@@ -42,13 +42,14 @@ class Material:
     name: str = field(default="", compare=False)
 
     def __post_init__(self) -> None:
-        check_positive("E", self.E, allow_inf=True)
+        check_positive("Young's modulus E", self.E, allow_inf=True)
         try:
             nu = float(self.nu)
         except (TypeError, ValueError) as exc:
-            raise CoatHertzError(f"nu must be a number in (-1, 0.5], got {self.nu!r}") from exc
+            raise CoatHertzError(
+                f"Poisson's ratio nu must be a number in (-1, 0.5], got {self.nu!r}") from exc
         if not (-1.0 < nu <= 0.5):
-            raise CoatHertzError(f"nu must satisfy -1 < nu <= 0.5, got {self.nu!r}")
+            raise CoatHertzError(f"Poisson's ratio nu must satisfy -1 < nu <= 0.5, got {self.nu!r}")
         object.__setattr__(self, "E", float(self.E))
         object.__setattr__(self, "nu", nu)
 
@@ -168,8 +169,11 @@ class Body:
             raise CoatHertzError(f"body material must be a Material, got {self.material!r}")
         if self.coating is not None and not isinstance(self.coating, Coating):
             raise CoatHertzError(f"coating must be a Coating or None, got {self.coating!r}")
-        check_positive("Rx", self.Rx, allow_inf=True)
-        check_positive("Ry", self.Ry, allow_inf=True)
+        if self.Rx == self.Ry:  # a sphere (or a flat surface): one radius, called R
+            check_positive("radius R", self.Rx, allow_inf=True)
+        else:
+            check_positive("radius Rx", self.Rx, allow_inf=True)
+            check_positive("radius Ry", self.Ry, allow_inf=True)
         object.__setattr__(self, "Rx", float(self.Rx))
         object.__setattr__(self, "Ry", float(self.Ry))
 

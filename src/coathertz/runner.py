@@ -14,22 +14,33 @@ and warm starts); a chunk's results are written to the store the moment it retur
 case. An interrupted run (Ctrl-C, a killed process) therefore loses at most the chunks in
 flight, and a rerun picks up where it stopped. Failures of single cases (a solver that did not
 converge, a case a method rejects) are stored as errors and reported, not raised.
+
+Every result passes :func:`coathertz.validity.check` (``meta["validity"]`` where a/R > 0.1); the
+run then issues one :class:`~coathertz.errors.ModelValidityWarning` that counts them.
+
+Worker processes die with their parent: on Linux the kernel kills them when the parent dies
+(``prctl(PR_SET_PDEATHSIG, SIGKILL)``), elsewhere a watchdog thread in each worker notices
+that its parent is gone within a second; they also drop their inherited copy of the store
+lock, so a killed run never leaves a store locked or open.
 """
 
 from __future__ import annotations
 
-import math
 import multiprocessing
 import os
+import signal
+import sys
+import threading
 import time
 import traceback
+import warnings
 from collections.abc import Callable, Iterable, Sequence
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from dataclasses import dataclass, field
 from typing import Any
 
 from coathertz.case import ContactCase
-from coathertz.errors import CoatHertzError
+from coathertz.errors import CoatHertzError, ModelValidityWarning
 from coathertz.methods import Method
 from coathertz.store import ResultStore, StoredResult, case_key, settings_key
 
@@ -74,26 +85,25 @@ class RunOutcome:
         return next((sr for k, sr in self.results.items() if k[0] == ck and k[1] == method), None)
 
 
-def _scalars(result: Any) -> dict:
-    d = result.scalars()
-    return d
-
-
 def solve_chunk(method: Method, cases: Sequence[ContactCase]) -> list[tuple[dict | None, str | None]]:
     """Solve ``cases`` with ``method`` (batch entry point if there is one); never raises.
 
-    Returns ``(scalars, None)`` or ``(None, error message)`` per case.
+    Returns ``(scalars, None)`` or ``(None, error message)`` per case; each result has passed
+    :func:`coathertz.validity.check` (without a warning: :func:`run_tasks` issues one per run).
     """
+    from coathertz.validity import check
+
     out: list[tuple[dict | None, str | None]] = []
     many = getattr(method, "solve_many", None)
     if many is not None and len(cases) > 1:
         try:
-            return [(_scalars(r), None) for r in many(list(cases))]
+            return [(check(c, r, warn=False).scalars(), None)
+                    for c, r in zip(cases, many(list(cases)), strict=True)]
         except Exception:  # one bad case spoils the batch: redo case by case
             pass
     for c in cases:
         try:
-            out.append((_scalars(method.solve(c)), None))
+            out.append((check(c, method.solve(c), warn=False).scalars(), None))
         except Exception as exc:
             out.append((None, f"{type(exc).__name__}: {exc}"))
     return out
@@ -153,7 +163,6 @@ def run_tasks(
     retry_errors: bool = False,
     stop_after: int | None = None,
     desc: str = "cases",
-    on_result: Callable[[Task, StoredResult], None] | None = None,
 ) -> RunOutcome:
     """Run every task not yet in ``store``; store each result as soon as it is available.
 
@@ -203,6 +212,7 @@ def run_tasks(
 
     bar = _progress(len(pending), progress, desc)
     stored = 0
+    outside: list[str] = []
 
     def record(method: Method, cases: Sequence[ContactCase], res: list, dt: float) -> None:
         nonlocal stored
@@ -215,8 +225,8 @@ def run_tasks(
                 outcome.computed += 1
             else:
                 outcome.failed += 1
-            if on_result is not None:
-                on_result(Task(c, method), sr)
+            if scalars is not None and (scalars.get("meta") or {}).get("validity"):
+                outside.append(f"{method.name}: {c.label or c.describe()}")
             stored += 1
             bar.update(1)
             if stop_after is not None and stored >= stop_after:
@@ -241,6 +251,10 @@ def run_tasks(
     finally:
         bar.close()
         outcome.wall_time = time.perf_counter() - t_start
+        if outside:
+            warnings.warn(
+                f"{len(outside)} result(s) lie outside the model's assumptions (a/R > 0.1; "
+                f"meta['validity'] says why), e.g. {outside[0]}", ModelValidityWarning, stacklevel=2)
     return outcome
 
 
@@ -249,9 +263,55 @@ def _mp_context():
     return multiprocessing.get_context("fork" if "fork" in methods else "spawn")
 
 
+#: Seconds between two checks of the parent by a worker's watchdog thread.
+WATCHDOG_INTERVAL = 0.5
+
+
+def _set_parent_death_signal() -> bool:
+    """Ask the Linux kernel to SIGKILL this process when its parent dies (``prctl``)."""
+    if not sys.platform.startswith("linux"):
+        return False
+    try:
+        import ctypes
+
+        libc = ctypes.CDLL(None, use_errno=True)
+        PR_SET_PDEATHSIG = 1
+        return libc.prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0) == 0
+    except (OSError, AttributeError):  # pragma: no cover
+        return False
+
+
+def _watch_parent(parent: int) -> None:
+    while True:
+        if os.getppid() != parent:
+            os._exit(1)
+        time.sleep(WATCHDOG_INTERVAL)
+
+
+def worker_init(parent: int) -> None:
+    """Initializer of the worker processes: die with the parent ``parent`` (pid).
+
+    Sets the parent-death signal (Linux) and starts a watchdog thread (everywhere) that exits
+    the worker as soon as it is re-parented; closes the inherited store-lock descriptors.
+    """
+    from coathertz.store import HELD_LOCK_FDS
+
+    for fd in list(HELD_LOCK_FDS):
+        try:
+            os.close(fd)
+        except OSError:
+            pass
+    HELD_LOCK_FDS.clear()
+    _set_parent_death_signal()
+    if os.getppid() != parent:  # the parent died before the signal was armed
+        os._exit(1)
+    threading.Thread(target=_watch_parent, args=(parent,), daemon=True, name="parent-watchdog").start()
+
+
 def _run_processes(chunks: list, workers: int, record: Callable) -> None:
     workers = max(1, min(workers, len(chunks), os.cpu_count() or 1))
-    ex = ProcessPoolExecutor(max_workers=workers, mp_context=_mp_context())
+    ex = ProcessPoolExecutor(max_workers=workers, mp_context=_mp_context(),
+                             initializer=worker_init, initargs=(os.getpid(),))
     futures: dict[Future, tuple[Method, list, float]] = {}
     it = iter(chunks)
     clean = False
@@ -305,11 +365,3 @@ def _run_dask(chunks: list, scheduler: Any, record: Callable) -> None:
         client.cancel(futs)
         if own:
             client.close()
-
-
-def finite(x: Any) -> bool:
-    """True for a finite float (helper for callers filtering stored results)."""
-    try:
-        return math.isfinite(float(x))
-    except (TypeError, ValueError):
-        return False

@@ -11,6 +11,7 @@ import argparse
 import importlib
 import pkgutil
 import sys
+import warnings
 from collections.abc import Sequence
 
 from coathertz import __version__
@@ -43,14 +44,30 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point of the ``coathertz`` console script; returns the exit status."""
+    """Entry point of the ``coathertz`` console script; returns the exit status.
+
+    Exit status: 0 success, 1 regression drift (``verify --baseline``), 2 bad input, a solver
+    that did not converge, or a file that cannot be read or written (one-line message on
+    stderr, no traceback), 130 interrupted. Warnings go to stderr as ``coathertz CMD: warning:``.
+    """
     parser = build_parser()
     args = parser.parse_args(argv)
-    try:
-        return int(args._run(args) or 0)
-    except (CoatHertzError, ConvergenceError) as exc:
-        print(f"coathertz {args.command}: error: {exc}", file=sys.stderr)
-        return 2
+    prefix = f"coathertz {args.command}"
+
+    def show(message, category, filename, lineno, file=None, line=None):
+        print(f"{prefix}: warning: {message}", file=sys.stderr)
+
+    with warnings.catch_warnings():
+        warnings.showwarning = show
+        try:
+            return int(args._run(args) or 0)
+        except (CoatHertzError, ConvergenceError) as exc:
+            print(f"{prefix}: error: {exc}", file=sys.stderr)
+            return 2
+        except OSError as exc:  # a file the command had to read or write
+            where = f" {exc.filename!r}" if exc.filename else ""
+            print(f"{prefix}: error: cannot access{where}: {exc.strerror or exc}", file=sys.stderr)
+            return 2
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -1,31 +1,41 @@
-"""Helpers shared by the subcommands: reading a case from a file or flags, printing tables."""
+"""Helpers shared by the subcommands: the case from a file and/or flags, output paths checked
+before computing, the validity check of every printed result, JSON and tables."""
 
 from __future__ import annotations
 
 import argparse
-import json
-import math
+import os
+import tempfile
+from pathlib import Path
 from typing import Any
 
 from coathertz.case import ContactCase
+from coathertz.casefile import quantity
 from coathertz.errors import CoatHertzError
+from coathertz.jsonsafe import dumps
 from coathertz.materials import RIGID, Body, Coating, Material
-from coathertz.units import parse_quantity
+from coathertz.results import ContactResult
 
 
 def add_case_arguments(parser: argparse.ArgumentParser) -> None:
-    """CASE (TOML file or example:NAME) or a case given by flags."""
+    """CASE (TOML file or example:NAME) or a case given by flags; flags given with a CASE
+    override its values (:func:`case_from_args`)."""
     parser.add_argument("case", nargs="?", help="TOML case file, or example:NAME (see --list-examples)")
     parser.add_argument("--list-examples", action="store_true", help="list the built-in example cases")
-    g = parser.add_argument_group("case by flags (rigid sphere on a coated half-space)")
+    g = parser.add_argument_group(
+        "case by flags (rigid sphere on a coated half-space); with a CASE they replace its values")
     g.add_argument("--W", help="load, e.g. '1 N'")
-    g.add_argument("--R", help="sphere radius, e.g. '10 mm'")
-    g.add_argument("--indenter", default="rigid", help="'rigid' or 'E,nu', e.g. '200 GPa,0.3'")
-    g.add_argument("--substrate", help="'rigid' or 'E,nu', e.g. '200 GPa,0.3'")
-    g.add_argument("--coating", help="'E,nu,h', e.g. '380 GPa,0.17,40 um'")
+    g.add_argument("--R", help="indenter (body1) sphere radius, e.g. '10 mm'")
+    g.add_argument("--indenter", help="indenter (body1) material: 'rigid' (default) or 'E,nu', "
+                                      "e.g. '200 GPa,0.3'")
+    g.add_argument("--substrate", help="substrate (body2) material: 'rigid' or 'E,nu', e.g. '200 GPa,0.3'")
+    g.add_argument("--coating", help="coating of body2: 'E,nu,h', e.g. '380 GPa,0.17,40 um'")
 
 
-def _material_flag(text: str, flag: str) -> Material:
+_CASE_FLAGS = ("W", "R", "indenter", "substrate", "coating")
+
+
+def _material_flag(text: str, flag: str, what: str) -> Material:
     if text.strip() == "rigid":
         return RIGID
     parts = [p.strip() for p in text.split(",")]
@@ -34,32 +44,69 @@ def _material_flag(text: str, flag: str) -> Material:
     try:
         nu = float(parts[1])
     except ValueError as exc:
-        raise CoatHertzError(f"{flag}: Poisson's ratio {parts[1]!r} is not a number") from exc
-    return Material(parse_quantity(parts[0], "pressure", name=f"{flag} E"), nu)
+        raise CoatHertzError(f"{flag}: {what} Poisson's ratio nu {parts[1]!r} is not a number") from exc
+    E = quantity(parts[0], "pressure", f"{flag}: {what} E", allow_inf=True)
+    try:
+        return Material(E, nu)
+    except CoatHertzError as exc:
+        raise CoatHertzError(f"{flag}: {what} {exc}") from None
+
+
+def _coating_flag(text: str) -> Coating:
+    parts = [p.strip() for p in text.split(",")]
+    if len(parts) != 3:
+        raise CoatHertzError(f"--coating expects 'E,nu,h' (e.g. '380 GPa,0.17,40 um'), got {text!r}")
+    cmat = _material_flag(",".join(parts[:2]), "--coating", "coating")
+    if cmat.is_rigid:
+        raise CoatHertzError(f"--coating: the coating must be elastic ('E,nu,h'), got {text!r}")
+    return Coating(cmat, quantity(parts[2], "length", "--coating: coating thickness h", minimum=">=0"))
+
+
+def _radius_flag(text: str) -> float:
+    return quantity(text, "length", "--R: indenter sphere radius R", allow_inf=True)
 
 
 def case_from_args(args: argparse.Namespace) -> ContactCase:
-    """The case named by ``args.case`` or assembled from the flags."""
+    """The case named by ``args.case`` (with the case flags given applied to it), or the case
+    assembled from the flags alone.
+
+    With a case file, ``--W`` sets the load, ``--R`` and ``--indenter`` the radius and material
+    of body1 (the indenter), ``--substrate`` and ``--coating`` the substrate material and the
+    coating of body2; the label then says what was replaced.
+    """
     from coathertz.casefile import load_case
 
+    given = {k: getattr(args, k, None) for k in _CASE_FLAGS}
+    given = {k: v for k, v in given.items() if v is not None}
     if args.case:
-        return load_case(args.case)
-    missing = [f"--{k}" for k in ("W", "R", "substrate") if getattr(args, k) is None]
+        case = load_case(args.case)
+        if not given:
+            return case
+        b1, b2 = case.body1, case.body2
+        changes: dict[str, Any] = {}
+        if "W" in given:
+            changes["W"] = quantity(given["W"], "force", "--W: load W")
+        if "R" in given or "indenter" in given:
+            R = _radius_flag(given["R"]) if "R" in given else None
+            mat = _material_flag(given["indenter"], "--indenter", "indenter") if "indenter" in given \
+                else b1.material
+            changes["body1"] = Body(mat, b1.coating, b1.Rx if R is None else R, b1.Ry if R is None else R,
+                                    b1.name)
+        if "substrate" in given or "coating" in given:
+            mat = _material_flag(given["substrate"], "--substrate", "substrate") if "substrate" in given \
+                else b2.material
+            coat = _coating_flag(given["coating"]) if "coating" in given else b2.coating
+            changes["body2"] = Body(mat, coat, b2.Rx, b2.Ry, b2.name)
+        note = ", ".join(f"--{k} {v}" for k, v in given.items())
+        return case.replace(label=f"{case.label or args.case} with {note}", **changes)
+    missing = [f"--{k}" for k in ("W", "R", "substrate") if k not in given]
     if missing:
-        raise CoatHertzError(f"give a case file or the flags {', '.join(missing)}")
-    W = parse_quantity(args.W, "force", name="--W")
-    R = parse_quantity(args.R, "length", name="--R")
-    indenter = _material_flag(args.indenter, "--indenter")
-    substrate = _material_flag(args.substrate, "--substrate")
-    coating = None
-    if args.coating:
-        parts = [p.strip() for p in args.coating.split(",")]
-        if len(parts) != 3:
-            raise CoatHertzError(
-                f"--coating expects 'E,nu,h' (e.g. '380 GPa,0.17,40 um'), got {args.coating!r}"
-            )
-        cmat = _material_flag(",".join(parts[:2]), "--coating")
-        coating = Coating(cmat, parse_quantity(parts[2], "length", name="--coating h"))
+        raise CoatHertzError(f"give a case file (or example:NAME) or the flags {', '.join(missing)}")
+    W = quantity(given["W"], "force", "--W: load W")
+    R = _radius_flag(given["R"])
+    indenter = _material_flag(given.get("indenter", "rigid"), "--indenter", "indenter")
+    substrate = _material_flag(given["substrate"], "--substrate", "substrate")
+    coating = _coating_flag(given["coating"]) if "coating" in given else None
     return ContactCase(Body(indenter, None, R, R), Body(substrate, coating), W)
 
 
@@ -71,19 +118,49 @@ def list_examples() -> int:
     return 0
 
 
+def check_output_file(path: str | Path, flag: str) -> Path:
+    """Fail now, before any computing, if ``path`` cannot be written: its folder must exist
+    and be writable, and ``path`` must not be a folder."""
+    p = Path(path)
+    if p.is_dir():
+        raise CoatHertzError(f"{flag} {str(path)!r} is a folder; give a file name")
+    parent = p.parent
+    if not parent.exists():
+        raise CoatHertzError(f"{flag} {str(path)!r}: the folder {str(parent)!r} does not exist; "
+                             f"create it first (mkdir -p {parent})")
+    if not parent.is_dir():
+        raise CoatHertzError(f"{flag} {str(path)!r}: {str(parent)!r} is not a folder")
+    if not os.access(parent, os.W_OK):
+        raise CoatHertzError(f"{flag} {str(path)!r}: the folder {str(parent)!r} is not writable")
+    return p
+
+
+def output_dir(path: str | Path, flag: str = "--out") -> Path:
+    """Create the output folder ``path`` (with parents) and check that it is writable."""
+    p = Path(path)
+    if p.exists() and not p.is_dir():
+        raise CoatHertzError(f"{flag} {str(path)!r} is a file, not a folder; give a folder for the output")
+    try:
+        p.mkdir(parents=True, exist_ok=True)
+        with tempfile.TemporaryFile(dir=p):
+            pass
+    except OSError as exc:
+        raise CoatHertzError(f"{flag} {str(path)!r}: cannot write there "
+                             f"({exc.strerror or exc}); give a writable folder") from None
+    return p
+
+
+def finish(case: ContactCase, res: ContactResult) -> ContactResult:
+    """Every result a subcommand prints passes through here: model validity (a/R > 0.1 warns
+    with :class:`~coathertz.errors.ModelValidityWarning` and sets ``meta["validity"]``)."""
+    from coathertz.validity import check
+
+    return check(case, res)
+
+
 def to_json(obj: Any) -> str:
-    """JSON with inf/nan written as strings (strict JSON)."""
-
-    def fix(v: Any) -> Any:
-        if isinstance(v, float) and not math.isfinite(v):
-            return str(v)
-        if isinstance(v, dict):
-            return {k: fix(x) for k, x in v.items()}
-        if isinstance(v, list | tuple):
-            return [fix(x) for x in v]
-        return v
-
-    return json.dumps(fix(obj), indent=2)
+    """Strict JSON (inf/nan written as strings), indented."""
+    return dumps(obj, indent=2)
 
 
 def format_table(header: list[str], rows: list[list[str]]) -> str:

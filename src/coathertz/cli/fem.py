@@ -4,30 +4,67 @@ from __future__ import annotations
 
 import argparse
 
+from coathertz.cli._common import add_case_arguments
+
 NAME = "fem"
 HELP = "axisymmetric finite-element solution of one case (delta, a, p0, stresses, VTU output)"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("case", help="TOML case file, or example:NAME")
-    parser.add_argument("--mesh", default="default", choices=["coarse", "default", "fine"],
-                        help="mesh level: 20 / 40 / 100 elements across the contact radius")
-    parser.add_argument("--contact", default="active-set", choices=["active-set", "penalty"],
+    from coathertz.fem.mesh import MESH_LEVELS
+    from coathertz.fem.method import CONTACTS, SOLVERS
+
+    add_case_arguments(parser)
+    levels = " / ".join(str(s.n_a) for s in MESH_LEVELS.values())
+    parser.add_argument("--mesh", default="default", choices=list(MESH_LEVELS),
+                        help=f"mesh level: {levels} elements across the estimated contact radius "
+                             "(the output counts them across the computed a, which differs a little)")
+    parser.add_argument("--contact", default="active-set", choices=list(CONTACTS),
                         help="contact formulation (default: active-set, exact)")
-    parser.add_argument("--solver", default="direct", choices=["direct", "amg"],
+    parser.add_argument("--solver", default="direct", choices=list(SOLVERS),
                         help="linear solver (default: direct)")
     parser.add_argument("--vtu", metavar="OUT.vtu", help="write mesh, displacement and stresses")
     parser.add_argument("--json", action="store_true", help="machine-readable output")
 
 
+def _solve(method, case):
+    """``method.solve_full(case)``, with a solver that does not converge reported as such."""
+    from coathertz.errors import CoatHertzError, ConvergenceError
+    from coathertz.validity import A_OVER_R_MAX
+
+    try:
+        return method.solve_full(case)
+    except (CoatHertzError, ConvergenceError, MemoryError):
+        raise
+    except Exception as exc:  # scikit-fem's Newton loop raises a bare Exception
+        if "converge" not in str(exc):
+            raise
+        ratio = case.hertz_s.a0 / case.R if case.E_star_s < float("inf") else case.hertz_c.a0 / case.R
+        hint = (f"; the Hertz estimate gives a/R = {ratio:.3g} > {A_OVER_R_MAX:g}, far outside the "
+                "model's small-strain range: lower the load W" if ratio > A_OVER_R_MAX else
+                "; try --contact penalty or a finer --mesh")
+        raise ConvergenceError(f"the FE contact solve did not converge ({exc}){hint}") from None
+
+
 def run(args: argparse.Namespace) -> int:
-    from coathertz.casefile import load_case
-    from coathertz.cli._common import format_table, print_json_or_header
+    from coathertz.cli._common import (
+        case_from_args,
+        check_output_file,
+        finish,
+        format_table,
+        list_examples,
+        print_json_or_header,
+    )
     from coathertz.fem.method import FEMMethod
 
-    case = load_case(args.case)
+    if args.list_examples:
+        return list_examples()
+    case = case_from_args(args)
+    if args.vtu:
+        check_output_file(args.vtu, "--vtu")
     method = FEMMethod(mesh=args.mesh, contact=args.contact, solver=args.solver, stresses=True)
-    res, model, path = method.solve_full(case)
+    res, model, path = _solve(method, case)
+    res = finish(case, res)
     if args.vtu:
         from coathertz.fem.io import write_vtu
 
@@ -37,7 +74,7 @@ def run(args: argparse.Namespace) -> int:
     norm = case.normalisers
     m = res.meta
     print(f"  mesh {args.mesh}: {m['elements']} Q2 elements, {m['dofs']} dofs, "
-          f"{m['elements_across_a']:.0f} elements across a; solver {m['solver']}, "
+          f"{m['elements_across_a']:.0f} elements across the computed a; solver {m['solver']}, "
           f"{m['contact']} {m['contact_iterations']} iterations, {m['wall_time']:.2f} s")
     rows = [
         ["delta [um]", f"{res.delta * 1e6:.5g}", f"{res.delta / norm.delta0:.5f}"],

@@ -5,16 +5,21 @@ from __future__ import annotations
 import argparse
 import math
 
+from coathertz.cli._common import add_case_arguments
+
 NAME = "fft"
 HELP = "DC-FFT contact solution of one case (delta, a, p0, iterations, residual)"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("case", help="TOML case file, or example:NAME")
+    from coathertz.fft.frf import INTERFACES
+    from coathertz.fft.grid import DEFAULT_N
+
+    add_case_arguments(parser)
     parser.add_argument("--grid", type=int, default=None, metavar="N",
-                        help="cells along each side of the domain (default 128, >= 16)")
-    parser.add_argument("--interface", default="bonded", choices=["bonded", "frictionless"],
-                        help="coating/substrate interface (default: bonded, the paper's model)")
+                        help=f"cells along each side of the domain (default {DEFAULT_N}, >= 16)")
+    parser.add_argument("--interface", default=INTERFACES[0], choices=INTERFACES,
+                        help=f"coating/substrate interface (default: {INTERFACES[0]}, the paper's model)")
     parser.add_argument("--spacing-ratio", type=float, default=None,
                         help="dy/dx (default: r_b/r_a; the paper's ellipses use 1/3)")
     parser.add_argument("--json", action="store_true", help="machine-readable output")
@@ -25,18 +30,28 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from coathertz.casefile import load_case
-    from coathertz.cli._common import format_table, print_json_or_header
+    from coathertz.cli._common import (
+        case_from_args,
+        check_output_file,
+        finish,
+        format_table,
+        list_examples,
+        print_json_or_header,
+    )
     from coathertz.fft.grid import DEFAULT_N
     from coathertz.fft.method import FFTMethod
 
-    case = load_case(args.case)
+    if args.list_examples:
+        return list_examples()
+    case = case_from_args(args)
+    if args.save_fields:
+        check_output_file(args.save_fields, "--save-fields")
     method = FFTMethod(
         n=DEFAULT_N if args.grid is None else args.grid,
         interface=args.interface,
         spacing_ratio=args.spacing_ratio,
     )
-    res = method.solve(case)
+    res = finish(case, method.solve(case))
     if args.save_fields:
         np.savez_compressed(args.save_fields, **{k: np.asarray(v) for k, v in res.fields.items()})
     if print_json_or_header(case, res, args.json):

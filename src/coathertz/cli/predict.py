@@ -4,11 +4,13 @@ from __future__ import annotations
 
 import argparse
 import math
+import sys
 import warnings
 
 from coathertz.cli._common import (
     add_case_arguments,
     case_from_args,
+    finish,
     format_table,
     list_examples,
     to_json,
@@ -23,9 +25,16 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--alpha", help="explicit alpha values 'a=..,p=..,delta=..' (e.g. read from figure 5)"
     )
-    parser.add_argument("--alpha-rule", default="paper", choices=["paper", "eq21-fill"],
-                        help="how the parts of eq (19) missing from the copy are filled (NOTES.md)")
+    parser.add_argument("--alpha-rule", default="paper", choices=_alpha_rules(),
+                        help="how the parts of eq (19) missing from the copy are filled (docs/paper-notes.md)")
     parser.add_argument("--json", action="store_true", help="machine-readable output")
+
+
+def _alpha_rules() -> list[str]:
+    """The rules the predictor knows (its registry), so the choices are not kept by hand."""
+    from coathertz.predictor import RULES
+
+    return sorted(RULES)
 
 
 def _um(x: float) -> str:
@@ -38,17 +47,22 @@ def _mpa(x: float) -> str:
 
 def run(args: argparse.Namespace) -> int:
     from coathertz.alpha import Alphas
-    from coathertz.errors import FittedRangeWarning
+    from coathertz.errors import FittedRangeWarning, ModelValidityWarning
     from coathertz.predictor import ClosedFormMethod
 
     if args.list_examples:
         return list_examples()
     case = case_from_args(args)
     alphas = Alphas.parse(args.alpha) if args.alpha else None
+    kinds = (FittedRangeWarning, ModelValidityWarning)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", FittedRangeWarning)
-        res = ClosedFormMethod(args.alpha_rule, alphas).solve(case)
-    msgs = [str(w.message) for w in caught if issubclass(w.category, FittedRangeWarning)]
+        warnings.simplefilter("always", ModelValidityWarning)
+        res = finish(case, ClosedFormMethod(args.alpha_rule, alphas).solve(case))
+    msgs = [str(w.message) for w in caught if issubclass(w.category, kinds)]
+    others = [w for w in caught if not issubclass(w.category, kinds)]
+    for w in others:
+        warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     hs, hc = case.hertz_s, case.hertz_c
     rows = {
         "hertz_substrate": {"delta": float(hs.delta0), "a": float(hs.a0), "p0": float(hs.p0),
@@ -64,8 +78,11 @@ def run(args: argparse.Namespace) -> int:
         "H": res.meta["H"], "E": res.meta["E"],
         "alpha": res.meta["alpha"], "alpha_source": res.meta["rule"],
         "E_star": res.meta["E_star"],
+        "validity": res.meta.get("validity"),
         "warnings": msgs,
     }
+    for m in msgs:
+        print(f"coathertz predict: warning: {m}", file=sys.stderr)
     if args.json:
         print(to_json({"units": "SI (m, Pa, N)", **info, **rows}))
         return 0
@@ -89,6 +106,4 @@ def run(args: argparse.Namespace) -> int:
             row += [_um(r["r_a"]), _um(r["r_b"])]
         table.append(row)
     print(format_table(header, table))
-    for m in msgs:
-        print(f"warning: {m}")
     return 0
