@@ -26,7 +26,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "--alpha", help="explicit alpha values 'a=..,p=..,delta=..' (e.g. read from figure 5)"
     )
     parser.add_argument("--alpha-rule", default="paper", choices=_alpha_rules(),
-                        help="how the parts of eq (19) missing from the copy are filled (docs/paper-notes.md)")
+                        help="how the parts of eq (19) missing from the copy are filled "
+                             "(docs/paper-notes.md)")
     parser.add_argument("--json", action="store_true", help="machine-readable output")
 
 

@@ -33,6 +33,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--workers", type=int, default=2, help="local worker processes (default 2)")
     parser.add_argument("--store", type=Path, help="result store (default OUT/store.sqlite)")
     parser.add_argument("--retry-errors", action="store_true", help="rerun cases stored as failed")
+    parser.add_argument("--recover-store", action="store_true",
+                        help="if the store is damaged, move it aside to STORE.damaged-<time> (kept) "
+                             "and recompute")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
     parser.add_argument("--list", action="store_true", help="list the studies and methods and exit")
 
@@ -42,12 +45,13 @@ def _sigterm(signum, frame):  # pragma: no cover - exercised through a subproces
 
 
 def run(args: argparse.Namespace) -> int:
+    from coathertz.cli._common import output_dir
     from coathertz.errors import CoatHertzError
     from coathertz.methods import method_names
     from coathertz.report import write_report
     from coathertz.report.baseline import load_baseline
     from coathertz.report.provenance import collect
-    from coathertz.store import ResultStore
+    from coathertz.store import open_run_store
     from coathertz.verification import get_study, studies
     from coathertz.verification._common import VARIANTS, build_methods, run_study
 
@@ -64,11 +68,11 @@ def run(args: argparse.Namespace) -> int:
     mods = [get_study(n) for n in args.study] if args.study else list(studies().values())
     baseline = load_baseline(args.baseline) if args.baseline else None
     methods, notes = build_methods(args.resolution, args.method)
-    out = args.out or Path("reports") / args.resolution
-    out.mkdir(parents=True, exist_ok=True)
+    out = output_dir(args.out or Path("reports") / args.resolution, "--out")
     for n in notes:
         print(f"coathertz verify: note: {n}", file=sys.stderr)
-    store = ResultStore(args.store or out / "store.sqlite")
+    store = open_run_store(args.store or out / "store.sqlite", recover=args.recover_store,
+                           note=lambda m: print(f"coathertz verify: note: {m}", file=sys.stderr))
     opts = {"workers": args.workers, "scheduler": args.scheduler,
             "progress": not args.no_progress and sys.stderr.isatty(), "retry_errors": args.retry_errors}
     old = signal.signal(signal.SIGTERM, _sigterm)

@@ -49,7 +49,7 @@ def load_baseline(path: str | Path) -> dict:
         data = json.loads(Path(path).read_text())
     except (OSError, ValueError) as exc:
         raise CoatHertzError(f"--baseline: cannot read {path}: {exc}") from exc
-    if data.get("format") != FORMAT or "claims" not in data:
+    if not isinstance(data, dict) or data.get("format") != FORMAT or "claims" not in data:
         raise CoatHertzError(f"--baseline: {path} is not a coathertz baseline (format {FORMAT})")
     return data
 

@@ -1,0 +1,65 @@
+"""Every bad input of issue 12 items 5-8 gives one clear line on stderr and exit status 2.
+
+The table (input, message) is the one in the hardening report; the CLI is called in-process
+through ``main(argv)``. Commands that would compute check their output paths first, so the
+rows with a bad output path take no solver time.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from coathertz.cli import main
+
+VERIFY = ["verify", "--tiny", "--study", "fig3", "--method", "closed-form", "--no-progress"]
+
+#: (id, argv, words the message must contain)
+TABLE = [
+    ("binary case file", ["predict", "binary.toml"], ["binary.toml", "not a text"]),
+    ("directory as case file", ["predict", "dircase"], ["dircase", "is a directory"]),
+    ("missing case file", ["predict", "nothere.toml"], ["does not exist", "example:b4c_on_steel"]),
+    ("fem at W = 1e12 N", ["fem", "big_load.toml", "--mesh", "coarse"],
+     ["did not converge", "a/R = 32", "lower the load W"]),
+    ("--save-fields into a missing folder",
+     ["fft", "example:b4c_on_steel", "--save-fields", "nodir/x.npz"], ["--save-fields", "'nodir' does not exist"]),
+    ("--vtu into a missing folder",
+     ["fem", "example:fig3_soft_coating", "--vtu", "nodir/x.vtu"], ["--vtu", "'nodir' does not exist"]),
+    ("--vtu is a folder", ["fem", "example:fig3_soft_coating", "--vtu", "dircase"], ["--vtu", "is a folder"]),
+    ("--baseline is a JSON list", [*VERIFY, "--out", "v", "--baseline", "list.json"],
+     ["--baseline", "list.json", "not a coathertz baseline"]),
+    ("--out is a file", [*VERIFY, "--out", "afile"], ["--out 'afile' is a file"]),
+    ("--out cannot be created", [*VERIFY, "--out", "/proc/coathertz-test"], ["--out", "cannot write"]),
+    ("damaged store", [*VERIFY, "--out", "v", "--store", "garbage.sqlite"],
+     ["garbage.sqlite", "damaged", "--recover-store"]),
+    ("coating nu = 0.6", ["predict", "nu_coat.toml"], ["[body2] coating", "nu", "got 0.6"]),
+    ("coating h = -40 um", ["predict", "h_neg.toml"], ["[body2] coating thickness h", "'-40 um'"]),
+    ("sphere R = -10 mm", ["predict", "R_neg.toml"], ["[body1] sphere radius R", "'-10 mm'"]),
+    ("--R -10 mm", ["predict", "--W", "1 N", "--R", "-10 mm", "--substrate", "200 GPa,0.3"],
+     ["--R", "radius R", "'-10 mm'"]),
+    ("--coating nu 0.6", ["predict", "--W", "1 N", "--R", "10 mm", "--substrate", "200 GPa,0.3",
+                          "--coating", "380 GPa,0.6,40 um"], ["--coating", "coating", "got 0.6"]),
+    ("--indenter nu 0.7", ["predict", "--W", "1 N", "--R", "10 mm", "--substrate", "200 GPa,0.3",
+                           "--indenter", "200 GPa,0.7"], ["--indenter", "indenter", "got 0.7"]),
+    ("--W -1 N on a case file", ["fft", "example:b4c_on_steel", "--W", "-1 N"], ["--W", "'-1 N'"]),
+    ("fft without a case", ["fft"], ["give a case file"]),
+]
+
+
+@pytest.mark.parametrize(("argv", "words"), [(a, w) for _, a, w in TABLE], ids=[t[0] for t in TABLE])
+def test_bad_input_gives_one_clear_line(bad_inputs, capsys, argv, words):
+    rc = main(argv)
+    cap = capsys.readouterr()
+    err = cap.err.strip()
+    assert rc == 2, f"exit status {rc}; stderr: {err}"
+    assert "Traceback" not in err
+    assert len(err.splitlines()) == 1, err
+    assert err.startswith(f"coathertz {argv[0]}: error: "), err
+    for w in words:
+        assert w in err, f"{w!r} not in {err!r}"
+    assert not (bad_inputs / "nodir").exists()
+
+
+def test_damaged_store_is_left_untouched(bad_inputs, capsys):
+    before = (bad_inputs / "garbage.sqlite").read_bytes()
+    assert main([*VERIFY, "--out", "v", "--store", "garbage.sqlite"]) == 2
+    assert (bad_inputs / "garbage.sqlite").read_bytes() == before
