@@ -38,7 +38,7 @@ from coathertz.alpha import (
 )
 from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError, FittedRangeWarning
-from coathertz.materials import Body, coating_constants
+from coathertz.materials import Body, coating_constants, lam_kappa, lam_kappa_rigid
 
 #: Exponent k of ``bar = (E*_q / E*_ref)^k`` for each quantity (eqs 1 and 5).
 EXPONENT = {"a": -1.0 / 3.0, "b": -1.0 / 3.0, "delta": -2.0 / 3.0, "p": 2.0 / 3.0}
@@ -81,10 +81,7 @@ def mu_from_ratio(E, nu_c, nu_s):
 
 def constants_from_ratio(E, nu_c, nu_s):
     """lam, kappa of eq (13) from the modulus ratio E = Ec*/Es* and the Poisson ratios."""
-    mu = mu_from_ratio(E, nu_c, nu_s)
-    lam = 1.0 - 4.0 * (1.0 - nu_c) / (1.0 + mu * (3.0 - 4.0 * nu_s))  # eq (13)
-    kappa = (mu - 1.0) / (mu + 3.0 - 4.0 * nu_c)  # eq (13)
-    return lam, kappa
+    return lam_kappa(mu_from_ratio(E, nu_c, nu_s), nu_c, nu_s)  # eq (13)
 
 
 def _warn_outside(x, bounds: tuple[float, float], label: str, symbol: str, held: str) -> None:
@@ -279,8 +276,7 @@ def predict_bar(
         raise CoatHertzError("H must satisfy H >= 0")
     nu_c = np.asarray(nu_c, dtype=float)
     if rigid_substrate:
-        lam = 4.0 * nu_c - 3.0
-        kappa = 1.0 / lam
+        lam, kappa = lam_kappa_rigid(nu_c)  # Section 4
         if alpha is None:
             if warn:
                 _warn_range(H, what="rigid substrate: ")

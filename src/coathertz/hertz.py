@@ -94,13 +94,6 @@ def hertz_circular(W: ArrayLike, R: ArrayLike, E_star: ArrayLike) -> HertzCircul
     return HertzCircular(_out(a0), _out(delta0), _out(p0))
 
 
-def pressure_circular(r: ArrayLike, a0: float, p0: float) -> np.ndarray:
-    """Hertz pressure p0 sqrt(1 - (r/a0)^2) inside ``r < a0``, zero outside; eq (1d)."""
-    r = np.asarray(r, dtype=float)
-    s = 1.0 - (r / a0) ** 2
-    return p0 * np.sqrt(np.clip(s, 0.0, None))
-
-
 def pressure_elliptical(x: ArrayLike, y: ArrayLike, r_a0: float, r_b0: float, p0: float) -> np.ndarray:
     """Hertz pressure on an ellipse with semi-axes r_a0 (along x), r_b0 (along y); eq (5e)."""
     s = 1.0 - (np.asarray(x) / r_a0) ** 2 - (np.asarray(y) / r_b0) ** 2

@@ -127,17 +127,29 @@ class CoatingConstants:
     kappa: float
 
 
+def lam_kappa(mu, nu_c, nu_s):
+    """lambda and kappa of eq (13) from the shear-modulus ratio ``mu = Gc/Gs`` and the Poisson
+    ratios (scalars or numpy arrays): the one place these constants are written down."""
+    lam = 1.0 - 4.0 * (1.0 - nu_c) / (1.0 + mu * (3.0 - 4.0 * nu_s))  # eq (13)
+    kappa = (mu - 1.0) / (mu + 3.0 - 4.0 * nu_c)  # eq (13)
+    return lam, kappa
+
+
+def lam_kappa_rigid(nu_c):
+    """lambda and kappa on a rigid substrate (mu = 0, Section 4): ``lam = 4 nu_c - 3``, ``kappa = 1/lam``."""
+    lam = 4.0 * nu_c - 3.0
+    return lam, 1.0 / lam
+
+
 def coating_constants(coating: Material, substrate: Material) -> CoatingConstants:
     """Return mu, lambda, kappa of eq (13) for ``coating`` on ``substrate``."""
     nu_c = coating.nu
     if substrate.is_rigid:
-        mu = 0.0
-        lam = 4.0 * nu_c - 3.0  # Section 4
-        return CoatingConstants(mu, lam, 1.0 / lam)
+        lam, kappa = lam_kappa_rigid(nu_c)  # Section 4
+        return CoatingConstants(0.0, lam, kappa)
     nu_s = substrate.nu
     mu = coating.E * (1.0 + nu_s) / (substrate.E * (1.0 + nu_c))  # eq (13)
-    lam = 1.0 - 4.0 * (1.0 - nu_c) / (1.0 + mu * (3.0 - 4.0 * nu_s))  # eq (13)
-    kappa = (mu - 1.0) / (mu + 3.0 - 4.0 * nu_c)  # eq (13)
+    lam, kappa = lam_kappa(mu, nu_c, nu_s)
     return CoatingConstants(mu, lam, kappa)
 
 

@@ -79,9 +79,3 @@ def parse_quantity(text: str | float | int, dimension: str, *, name: str = "valu
     if unit not in table:
         raise CoatHertzError(f"{name}: unit {unit!r} is not a {dimension} unit; use one of {list(table)}")
     return value * table[unit]
-
-
-def format_quantity(value: float, unit: str, dimension: str, digits: int = 5) -> str:
-    """Format an SI value in ``unit`` (for tables and report labels)."""
-    factor = UNITS[dimension][unit]
-    return f"{value / factor:.{digits}g} {unit}"

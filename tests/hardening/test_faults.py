@@ -125,7 +125,8 @@ def test_verify_recover_store_end_to_end(tmp_path, capsys):
     out = tmp_path / "v"
     out.mkdir()
     _garbage(out / "store.sqlite")
-    argv = ["verify", "--tiny", "--study", "fig3", "--method", "closed-form", "--no-progress", "--out", str(out)]
+    argv = ["verify", "--tiny", "--study", "fig3", "--method", "closed-form", "--no-progress",
+            "--out", str(out)]
     assert main(argv) == 2
     assert "--recover-store" in capsys.readouterr().err
     assert main([*argv, "--recover-store"]) == 0

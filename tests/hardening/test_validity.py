@@ -55,4 +55,5 @@ def test_runner_records_validity_for_every_method(name):
         out = run_tasks([Task(big, m), Task(small, m)], store, workers=1, progress=False)
     assert "a/R" in out.get(big, m).result["meta"]["validity"]
     assert "validity" not in out.get(small, m).result["meta"]
-    assert [str(w.message) for w in caught if w.category is ModelValidityWarning][0].startswith("1 result(s)")
+    msgs = [str(w.message) for w in caught if w.category is ModelValidityWarning]
+    assert len(msgs) == 1 and msgs[0].startswith("1 result(s)")
