@@ -1,6 +1,6 @@
 """The contact case shared by every method: two bodies, a load, their orientation.
 
-Normalisation follows the paper (Section 1.3 and NOTES.md):
+Normalisation follows the paper (Section 1.3 and docs/paper-notes.md):
 
 * elastic substrate(s): ``a0s, p0s, delta0s`` are the Hertz values with the coatings
   removed, ``H = h / a0s`` (eq 7a), bars are ratios to the ``s`` values;
