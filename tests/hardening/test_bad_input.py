@@ -7,6 +7,8 @@ rows with a bad output path take no solver time.
 
 from __future__ import annotations
 
+import os
+
 import pytest
 
 from coathertz.cli import main
@@ -30,6 +32,7 @@ TABLE = [
      ["--baseline", "list.json", "not a coathertz baseline"]),
     ("--out is a file", [*VERIFY, "--out", "afile"], ["--out 'afile' is a file"]),
     ("--out cannot be created", [*VERIFY, "--out", "/proc/coathertz-test"], ["--out", "cannot write"]),
+    ("--store is a folder", [*VERIFY, "--out", "v", "--store", "dircase"], ["dircase", "is a directory"]),
     ("damaged store", [*VERIFY, "--out", "v", "--store", "garbage.sqlite"],
      ["garbage.sqlite", "damaged", "--recover-store"]),
     ("coating nu = 0.6", ["predict", "nu_coat.toml"], ["[body2] coating", "nu", "got 0.6"]),
@@ -64,3 +67,19 @@ def test_damaged_store_is_left_untouched(bad_inputs, capsys):
     before = (bad_inputs / "garbage.sqlite").read_bytes()
     assert main([*VERIFY, "--out", "v", "--store", "garbage.sqlite"]) == 2
     assert (bad_inputs / "garbage.sqlite").read_bytes() == before
+
+
+@pytest.mark.skipif(not hasattr(os, "geteuid") or os.geteuid() == 0,
+                    reason="root may write into read-only folders")
+def test_read_only_out(bad_inputs, capsys):
+    ro = bad_inputs / "ro"
+    ro.mkdir()
+    ro.chmod(0o555)
+    try:
+        assert main([*VERIFY, "--out", str(ro)]) == 2
+        err = capsys.readouterr().err
+        assert "--out" in err and "cannot write there" in err and "Traceback" not in err
+        assert main(["fft", "example:b4c_on_steel", "--save-fields", str(ro / "f.npz")]) == 2
+        assert "not writable" in capsys.readouterr().err
+    finally:
+        ro.chmod(0o755)
