@@ -42,7 +42,8 @@ def quantity(text: Any, dimension: str, name: str, *, minimum: str = ">0", allow
     bad = math.isnan(v) or (v <= 0 if minimum == ">0" else v < 0) or (math.isinf(v) and not allow_inf)
     if bad:
         lo = "0 < " if minimum == ">0" else "0 <= "
-        hi = " <= inf ('inf': flat)" if allow_inf else " < inf"
+        hint = {"length": " ('inf': flat)", "pressure": " ('inf': rigid)"}.get(dimension, "")
+        hi = f" <= inf{hint}" if allow_inf else " < inf"
         raise CoatHertzError(f"{name} must satisfy {lo}{name.split()[-1]}{hi}, got {text!r}")
     return v
 

@@ -442,6 +442,8 @@ def open_run_store(path: str | Path, *, recover: bool = False, version: str | No
     note
         Callable receiving a one-line message when a damaged store was moved aside.
     """
+    if str(path) == ":memory:":
+        return ResultStore(path, version)
     path = Path(path)
     if path.is_dir():
         raise StoreError(f"result store {path} is a directory, not a store file")

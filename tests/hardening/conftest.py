@@ -43,4 +43,6 @@ def bad_inputs(tmp_path, monkeypatch):
     write_case(tmp_path, "h_neg.toml", h="-40 um")
     write_case(tmp_path, "R_neg.toml", R="-10 mm")
     write_case(tmp_path, "big_load.toml", W="1e12 N")
+    write_case(tmp_path, "W_neg.toml", W="-1 N")
+    write_case(tmp_path, "Ec_neg.toml", Ec="-380 GPa")
     return tmp_path

@@ -37,6 +37,8 @@ TABLE = [
      ["garbage.sqlite", "damaged", "--recover-store"]),
     ("coating nu = 0.6", ["predict", "nu_coat.toml"], ["[body2] coating", "nu", "got 0.6"]),
     ("coating h = -40 um", ["predict", "h_neg.toml"], ["[body2] coating thickness h", "'-40 um'"]),
+    ("load W = -1 N", ["predict", "W_neg.toml"], ["load W", "'-1 N'"]),
+    ("coating E = -380 GPa", ["predict", "Ec_neg.toml"], ["[body2] coating E", "'-380 GPa'"]),
     ("sphere R = -10 mm", ["predict", "R_neg.toml"], ["[body1] sphere radius R", "'-10 mm'"]),
     ("--R -10 mm", ["predict", "--W", "1 N", "--R", "-10 mm", "--substrate", "200 GPa,0.3"],
      ["--R", "radius R", "'-10 mm'"]),
