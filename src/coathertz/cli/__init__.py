@@ -68,6 +68,13 @@ def main(argv: Sequence[str] | None = None) -> int:
             where = f" {exc.filename!r}" if exc.filename else ""
             print(f"{prefix}: error: cannot access{where}: {exc.strerror or exc}", file=sys.stderr)
             return 2
+        except MemoryError:
+            print(f"{prefix}: error: out of memory; use a coarser resolution (--mesh, --grid)",
+                  file=sys.stderr)
+            return 2
+        except KeyboardInterrupt:
+            print(f"{prefix}: interrupted", file=sys.stderr)
+            return 130
 
 
 if __name__ == "__main__":  # pragma: no cover
