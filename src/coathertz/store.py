@@ -214,10 +214,11 @@ class ResultStore:
 
     def get(self, case: ContactCase, method: str, settings: Mapping[str, Any]) -> StoredResult | None:
         """The stored result of ``case`` by ``method`` with ``settings`` at this code version."""
-        row = self._db.execute(
+        row = self._query(
             "SELECT * FROM results WHERE case_key=? AND method=? AND settings_key=? AND code_version=?",
             self.key(case, method, settings),
-        ).fetchone()
+        )[:1]
+        row = row[0] if row else None
         return None if row is None else self._row(row)
 
     def get_many(
@@ -230,11 +231,11 @@ class ResultStore:
         for s in range(0, len(keys), 500):
             chunk = keys[s : s + 500]
             q = ",".join("?" * len(chunk))
-            rows = self._db.execute(
+            rows = self._query(
                 f"SELECT * FROM results WHERE method=? AND settings_key=? AND code_version=? "
                 f"AND case_key IN ({q})",
                 (method, skey, self.version, *chunk),
-            ).fetchall()
+            )
             for r in rows:
                 sr = self._row(r)
                 out[sr.case_key] = sr
@@ -269,12 +270,19 @@ class ResultStore:
         if status is not None:
             q += " AND status=?"
             args.append(status)
-        return int(self._db.execute(q, args).fetchone()[0])
+        return int(self._query(q, args)[0][0])
 
     def rows(self, method: str | None = None) -> Iterator[StoredResult]:
         q = "SELECT * FROM results" + (" WHERE method=?" if method else "") + " ORDER BY created"
-        for r in self._db.execute(q, (method,) if method else ()):
+        for r in self._query(q, (method,) if method else ()):
             yield self._row(r)
+
+    def _query(self, sql: str, args: Iterable[Any] = ()) -> list[tuple]:
+        """Rows of a read query; a damaged file raises :class:`StoreError` naming it."""
+        try:
+            return self._db.execute(sql, tuple(args)).fetchall()
+        except sqlite3.Error as exc:
+            raise _store_error(self.path, exc) from exc
 
     @staticmethod
     def _row(r: tuple) -> StoredResult:
