@@ -15,14 +15,14 @@ _SPECIAL = {"inf": math.inf, "-inf": -math.inf, "nan": math.nan}
 
 def to_jsonable(obj: Any) -> Any:
     """``obj`` with non-finite floats as strings, numpy scalars and arrays as Python values,
-    tuples as lists and dict keys as strings."""
+    tuples and sets as lists and dict keys as strings."""
     if isinstance(obj, bool) or obj is None or isinstance(obj, int | str):
         return obj
     if isinstance(obj, float):
         return obj if math.isfinite(obj) else str(obj)
     if isinstance(obj, dict):
         return {str(k): to_jsonable(v) for k, v in obj.items()}
-    if isinstance(obj, list | tuple):
+    if isinstance(obj, list | tuple | set | frozenset):
         return [to_jsonable(v) for v in obj]
     if hasattr(obj, "tolist") and callable(obj.tolist):  # numpy scalars and arrays
         return to_jsonable(obj.tolist())
