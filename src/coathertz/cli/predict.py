@@ -33,9 +33,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def _alpha_rules() -> list[str]:
     """The rules the predictor knows (its registry), so the choices are not kept by hand."""
-    from coathertz.predictor import RULES
+    from coathertz import predictor
 
-    return sorted(RULES)
+    return sorted(getattr(predictor, "RULE_NAMES", predictor.RULES))
 
 
 def _um(x: float) -> str:
