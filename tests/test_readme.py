@@ -84,9 +84,9 @@ def _printed(out: str) -> tuple[str, str, str]:
     ext = [ln for ln in lines if ln.startswith("extended Hertz")]
     if ext:
         return tuple(ext[0].split()[2:5])
-    def value(prefix: str) -> str:
+    def value(prefix: str) -> str:  # "a [um] (edge-fit)   37.005  0.90170" -> "37.005"
         row = next(ln for ln in lines if ln.startswith(prefix))
-        return row.split("]", 1)[1].replace("(edge-fit)", "").replace("(gap fit)", "").split()[0]
+        return re.match(r"[^\]]*\]\s*(?:\([^)]*\)\s*)?(\S+)", row).group(1)
     return value("delta [um]"), value("a [um]"), value("p0 [MPa]")
 
 
