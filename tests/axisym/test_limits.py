@@ -74,12 +74,14 @@ def test_thin_coating_limit_is_substrate_hertz(E):
         assert dev[-1] < 0.03
 
 
+@pytest.mark.parametrize("interface", ["bonded", "frictionless"])
 @pytest.mark.parametrize("E", [0.25, 4.0])
-def test_thick_coating_limit_is_coating_hertz(E):
+def test_thick_coating_limit_is_coating_hertz(E, interface):
     """H -> inf: the solution tends to the coating's Hertz values like 1/H (Vorovich-type series);
     Richardson extrapolation in 1/H recovers eq (1) with Ec* to 1e-8."""
     Hs = [400.0, 800.0, 1600.0]
-    res = [M.solve(coated(E, H)) for H in Hs]
+    m = AxisymMethod(interface=interface)
+    res = [m.solve(coated(E, H)) for H in Hs]
     case = coated(E, 400.0)
     inv = [1.0 / H for H in Hs]
     for q, ref in (("delta", case.delta0c), ("a", case.a0c), ("p0", case.p0c)):
@@ -143,3 +145,40 @@ def test_rigid_base_thin_frictionless_layer_is_winkler():
         taus.append(co.h / r.a)
     order = np.polyfit(np.log(taus), np.log(errs), 1)[0]
     assert errs[-1] < 0.1 and order > 0.8, f"errors {errs} at tau {taus}: observed order {order:.2f}"
+
+
+@pytest.mark.parametrize("E", [0.25, 4.0])
+def test_frictionless_thin_coating_limit_is_substrate_hertz(E):
+    """Frictionless interface, H -> 0: delta_bar -> 1 at first order in H."""
+    m = AxisymMethod(interface="frictionless")
+    Hs = [0.04, 0.02, 0.01]
+    case = coated(E, 0.01)
+    dev = np.abs([m.solve(coated(E, H)).delta / case.delta0s - 1 for H in Hs])
+    order = np.polyfit(np.log(Hs), np.log(dev), 1)[0]
+    assert dev[-1] < 0.03 and 0.8 < order < 1.2, f"|delta_bar - 1| = {dev} at H = {Hs}: order {order:.2f}"
+
+
+@pytest.mark.parametrize("indenter", [Material(200e9, 0.3), Material(70e9, 0.2)])
+@pytest.mark.parametrize("H", [0.01, 0.5])
+def test_elastic_indenter_on_equal_coating_is_hertz(indenter, H):
+    """Elastic sphere on a coating equal to its substrate: Hertz with the eq (2) modulus."""
+    case = coated(1.0, H, indenter=indenter)
+    r = M.solve(case)
+    assert rel(r.delta, case.delta0s) < 1e-10 and rel(r.a, case.a0s) < 1e-10 and rel(r.p0, case.p0s) < 1e-10
+
+
+@pytest.mark.parametrize("interface", ["bonded", "frictionless"])
+def test_two_identical_coated_balls_equal_half_moduli(interface):
+    """Two identical coated balls (radius 2R each) have twice the compliance of one coated body
+    (F depends on modulus ratios only), i.e. the same contact as a rigid sphere R on one coated
+    half-space with both moduli halved (eq 18 applied to both bodies, exactly)."""
+    from coathertz.case import ContactCase
+    from coathertz.materials import Body, Coating
+
+    co, sub, h = Material(406.25e9, 0.3), Material(200e9, 0.28), 12.336e-6
+    two = ContactCase(Body.sphere(sub, 20e-3, Coating(co, h)), Body.sphere(sub, 20e-3, Coating(co, h)), 1.0)
+    half = ContactCase.sphere_on_coated_half_space(10e-3, 1.0, Material(co.E / 2, co.nu), h,
+                                                   Material(sub.E / 2, sub.nu))
+    m = AxisymMethod(interface=interface)
+    r2, r1 = m.solve(two), m.solve(half)
+    assert rel(r2.delta, r1.delta) < 1e-12 and rel(r2.a, r1.a) < 1e-12 and rel(r2.p0, r1.p0) < 1e-12
