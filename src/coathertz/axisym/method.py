@@ -24,7 +24,7 @@ ModelValidityWarning = getattr(errors, "ModelValidityWarning", UserWarning)
 VALIDITY_A_OVER_R = 0.1
 
 
-def default_modes(tau: float, c_modes: float = 8.0, n_min: int = 16, n_max: int = 160) -> int:
+def default_modes(tau: float, c_modes: float = 7.0, n_min: int = 16, n_max: int = 160) -> int:
     """Number of Legendre modes for thickness ratio ``tau = h_min / a``: ``c_modes / sqrt(tau)``
     (the boundary layer of width ~h at the contact edge needs ``N^2 ~ a/h``), rounded up to a
     multiple of 8 (so that cases share cached Bessel tables) and clipped to ``[n_min, n_max]``."""
@@ -59,10 +59,10 @@ class AxisymMethod:
 
     interface: str = "bonded"
     n_modes: int | None = None
-    c_modes: float = 8.0
-    order: int = 16
+    c_modes: float = 7.0
+    order: int = 8
     panel: float = 3.0
-    decay: float = 24.0
+    decay: float = 18.0
     rtol: float = 1e-12
     keep_fields: bool = True
     name: str = "axisym"
@@ -92,11 +92,12 @@ class AxisymMethod:
     # registry metadata --------------------------------------------------------------------------
     @classmethod
     def settings_for(cls, resolution: str) -> dict:
-        """Constructor keyword arguments at a study resolution: the defaults everywhere (the method
-        is converged to ~1e-9 at default settings and costs milliseconds)."""
+        """Constructor keyword arguments at a study resolution: the default quadrature everywhere
+        (converged to ~1e-9 and costing milliseconds), without the profiles (studies compare
+        scalars; ``keep_fields`` does not change the numbers and is not in :meth:`settings`)."""
         if resolution not in ("tiny", "quick", "full"):
             raise CoatHertzError(f"resolution must be one of ('tiny', 'quick', 'full'), got {resolution!r}")
-        return {}
+        return {"keep_fields": False}
 
     # Method protocol ---------------------------------------------------------------------------
     def settings(self) -> Mapping[str, Any]:
@@ -152,7 +153,7 @@ class AxisymMethod:
         fields: dict[str, np.ndarray] = {}
         if self.keep_fields:
             rho_in = 0.5 * (1.0 - np.cos(np.linspace(0.0, math.pi, 121)))
-            rho = np.concatenate([rho_in, np.linspace(1.0, 3.0, 41)[1:]])
+            rho = np.concatenate([rho_in, np.linspace(1.0, 3.0, 25)[1:]])
             p = np.zeros_like(rho)
             p[: rho_in.size] = pressure(pc, sol, rho_in)
             fields = {
