@@ -13,7 +13,14 @@ import numpy as np
 
 from coathertz import errors
 from coathertz.axisym.kernel import INTERFACES, pair_compliance
-from coathertz.axisym.solver import XiRule, displacement, peak_pressure, pressure, solve_load
+from coathertz.axisym.solver import (
+    XiRule,
+    displacement,
+    initial_radius,
+    peak_pressure,
+    pressure,
+    solve_load,
+)
 from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError
 from coathertz.results import ContactResult
@@ -24,14 +31,21 @@ ModelValidityWarning = getattr(errors, "ModelValidityWarning", UserWarning)
 VALIDITY_A_OVER_R = 0.1
 
 
-def default_modes(tau: float, c_modes: float = 7.0, n_min: int = 16, n_max: int = 160) -> int:
-    """Number of Legendre modes for thickness ratio ``tau = h_min / a``: ``c_modes / sqrt(tau)``
-    (the boundary layer of width ~h at the contact edge needs ``N^2 ~ a/h``), rounded up to a
-    multiple of 8 (so that cases share cached Bessel tables) and clipped to ``[n_min, n_max]``."""
+N_MIN, N_MAX = 16, 160
+
+
+def modes_needed(tau: float, c_modes: float = 7.0) -> int:
+    """Legendre modes for thickness ratio ``tau = h_min / a``: ``c_modes / sqrt(tau)`` (the
+    boundary layer of width ~h at the contact edge needs ``N^2 ~ a/h``), rounded up to a
+    multiple of 8 (so that cases share cached Bessel tables), at least ``N_MIN``."""
     if not math.isfinite(tau):
-        return n_min
-    n = math.ceil(c_modes / math.sqrt(max(tau, 1e-12)) / 8.0) * 8
-    return int(min(max(n, n_min), n_max))
+        return N_MIN
+    return max(math.ceil(c_modes / math.sqrt(max(tau, 1e-12)) / 8.0) * 8, N_MIN)
+
+
+def default_modes(tau: float, c_modes: float = 7.0) -> int:
+    """:func:`modes_needed` capped at ``N_MAX`` (cost grows like ``N^2 a/h``)."""
+    return min(modes_needed(tau, c_modes), N_MAX)
 
 
 @dataclass(frozen=True)
@@ -127,13 +141,15 @@ class AxisymMethod:
         pc = pair_compliance(case, self.interface)
         R = case.R
         rule = self._rule()
-        if self.n_modes is not None:
-            n_modes = self.n_modes
-        else:
-            # h/a at the Hertz radius of the stiffer limit (the smaller a, the larger h/a)
-            a_est = min(case.a0s, case.a0c) if math.isfinite(case.a0s) and case.a0s > 0 else case.a0c
-            n_modes = default_modes(pc.h_min / max(a_est, 1e-300) * 0.9, self.c_modes)
-        sol, iters = solve_load(pc, R, case.W, n_modes, rule, self.decay, self.rtol)
+        a_init = initial_radius(pc, R, case.W)
+        auto = self.n_modes is None
+        n_modes = default_modes(pc.h_min / a_init, self.c_modes) if auto else self.n_modes
+        sol, iters = solve_load(pc, R, case.W, n_modes, rule, self.decay, self.rtol, a_start=a_init)
+        if auto and default_modes(pc.h_min / sol.a, self.c_modes) > n_modes:
+            # the estimate of a was too large: more modes at the converged radius
+            n_modes = default_modes(pc.h_min / sol.a, self.c_modes)
+            sol, more = solve_load(pc, R, case.W, n_modes, rule, self.decay, self.rtol, a_start=sol.a)
+            iters += more
         p0, r_p0 = peak_pressure(pc, sol)
         meta: dict[str, Any] = {
             "r_p0": r_p0,
@@ -145,6 +161,12 @@ class AxisymMethod:
             "interface": self.interface,
             "settings": dict(self.settings()),
         }
+        if auto and modes_needed(pc.h_min / sol.a, self.c_modes) > 1.5 * N_MAX:
+            msg = (f"h/a = {pc.h_min / sol.a:.3g}: the rule asks for "
+                   f"{modes_needed(pc.h_min / sol.a, self.c_modes)} Legendre modes, capped at {N_MAX}; "
+                   "a and p0 may be less accurate than 1e-8 (pass n_modes to refine)")
+            warnings.warn(msg, UserWarning, stacklevel=2)
+            meta["accuracy"] = msg
         if sol.a / R > VALIDITY_A_OVER_R:
             msg = (f"a/R = {sol.a / R:.3g} > {VALIDITY_A_OVER_R}: the half-space, small-strain "
                    "model behind every method is outside its range")

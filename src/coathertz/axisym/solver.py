@@ -178,10 +178,12 @@ def solve_load(
     decay: float = 24.0,
     rtol: float = 1e-12,
     max_iter: int = 40,
+    a_start: float | None = None,
 ) -> tuple[RadiusSolution, int]:
-    """Find ``a`` with ``W(a) = W`` (secant in ``log a`` on ``log W``, bracketed)."""
+    """Find ``a`` with ``W(a) = W`` (secant in ``log a`` on ``log W``, bracketed), starting from
+    ``a_start`` (default :func:`initial_radius`)."""
     target = math.log(W)
-    x0 = math.log(initial_radius(pc, R, W))
+    x0 = math.log(initial_radius(pc, R, W) if a_start is None else a_start)
 
     def f(x: float) -> tuple[float, RadiusSolution]:
         s = solve_at_radius(pc, R, math.exp(x), n_modes, rule, decay)
