@@ -53,12 +53,15 @@ of modes: ``N = 7 / sqrt(h/a)`` (rounded up to a multiple of 8, ``16 <= N <= 160
 *The oscillating, slowly decaying xi integral*: the homogeneous (non-decaying) part of the
 kernel never enters it; what remains, ``M(xi/a) j_{2m} j_{2n}``, decays like
 ``(xi h/a)^2 exp(-2 xi h/a) / xi^2`` and oscillates as ``cos 2 xi``. It is integrated on
-``[0, 18 a/h]`` (``M < 1e-13`` beyond) by composite Gauss--Legendre: geometric panels
-``2^-14 .. 4`` (they resolve ``M`` for thick layers, where it varies on the scale ``a/h``) then
-panels of width 3 with 8 nodes (2.7 nodes per unit of ``xi``; the oscillation has period
-``pi``). ``j_{2n}`` on the nodes come from one three-term recurrence for all orders (upward for
-``xi >= n``, Miller downward below), cached per (modes, rule) and shared by all cases; each
-radius costs one ``J diag(w M) J^T`` product and an ``N x N`` LU solve.
+``[0, 14 a/h]`` (``M ~ 1e-10`` there; the neglected tail changes the results by < 1e-10) by
+composite Gauss--Legendre: geometric panels ``2^-14 .. 4`` (they resolve ``M`` for thick layers,
+where it varies on the scale ``a/h``) then panels of width 4 with 8 nodes (2 nodes per unit of
+``xi``; the oscillation has period ``pi``). Quadrature error at these defaults: < 1e-10 in
+``delta``, ``a``, ``p0`` against 16 nodes per panel and a cut-off at ``30 a/h`` (six cases from
+``H = 0.01`` to 3, rigid base ``nu_c = 0.5`` included). ``j_{2n}`` on the nodes come from one
+three-term recurrence for all orders (upward for ``xi >= n``, Miller downward below), cached per
+(modes, rule) and shared by all cases; each radius costs one ``J diag(w M) J^T`` product and an
+``N x N`` LU solve.
 
 *Load control*: secant iteration on ``log W(a) - log W`` in ``log a`` (bracketed), started from
 the Hertz radius with the compliance taken at ``k = 1.2/a`` and the slope of that model
@@ -85,15 +88,16 @@ H = 0.05
 ========================  ====  =====================================  ======================
 
 ``delta`` converges fastest (6e-8 at N = 8 for H = 0.01), ``a`` and ``p0`` (edge quantities)
-slowest; all converge geometrically in N. In the xi rule the error falls from ~1e-5 at 4 nodes
-per panel to ~1e-11 at 7-8 (about 1.5 decades per node). Limits (``test_limits.py``): homogeneous
-bodies and a coating equal to its substrate reproduce eq (1) to 1e-12 and 1e-10; ``h = 0`` is the
-substrate Hertz solution exactly; ``H -> inf`` extrapolates (Richardson in 1/H) to the coating's
-Hertz values to 1e-8; ``H -> 0`` approaches the substrate's at first order in H (``delta``, ``p0``;
-``a`` at observed order ~0.8); thin layers on a rigid base approach the Winkler layer
-(bonded: constrained modulus; frictionless: ``E_c*``) and, for ``nu_c = 0.5``, Matthewson's
-incompressible layer (eq 10) at first order in ``h/a``. FFT (n = 256) and FE cross-checks are
-in ``test_crosscheck.py``; timings in ``tests/benchmarks/bench_axisym.py``.
+slowest; all converge geometrically in N. In the xi rule (panels of width 3) the error falls from
+~1e-5 at 4 nodes per panel to ~1e-11 at 7-8 (about 1.5 decades per node).
+
+Limits (``test_limits.py``): homogeneous bodies and a coating equal to its substrate reproduce eq
+(1) to 1e-12 and 1e-10; ``h = 0`` is the substrate Hertz solution exactly; ``H -> inf`` extrapolates
+(Richardson in 1/H) to the coating's Hertz values to 1e-8; ``H -> 0`` approaches the substrate's at
+first order in H (``delta``, ``p0``; ``a`` at observed order ~0.8); thin layers on a rigid base
+approach the Winkler layer (bonded: constrained modulus; frictionless: ``E_c*``) and, for ``nu_c =
+0.5``, Matthewson's incompressible layer (eq 10) at first order in ``h/a``. FFT (n = 256) and FE
+cross-checks are in ``test_crosscheck.py``; timings in ``tests/benchmarks/bench_axisym.py``.
 """
 
 from coathertz.axisym.method import AxisymMethod
