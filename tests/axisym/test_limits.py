@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 import pytest
-from conftest import coated, homogeneous
+from conftest import STEEL, coated, homogeneous
 
 from coathertz.axisym import AxisymMethod
 from coathertz.hertz import hertz_circular
@@ -187,3 +187,22 @@ def test_two_identical_coated_balls_equal_half_moduli(interface):
     m = AxisymMethod(interface=interface)
     r2, r1 = m.solve(two), m.solve(half)
     assert rel(r2.delta, r1.delta) < 1e-12 and rel(r2.a, r1.a) < 1e-12 and rel(r2.p0, r1.p0) < 1e-12
+
+
+@pytest.mark.parametrize("interface", ["bonded", "frictionless"])
+def test_similarity_scaling(interface):
+    """Scaling every length (R, h) by s and the load by s^2 keeps the strains: delta and a scale
+    by s, p0 is unchanged (exactly, up to round-off); a larger load moves deeper (monotone)."""
+    from coathertz.case import ContactCase
+    from coathertz.materials import Body, Coating
+
+    def case(s, W):
+        return ContactCase(Body.rigid_sphere(10e-3 * s),
+                           Body.half_space(STEEL, Coating(Material(600e9, 0.2), 8e-6 * s)), W)
+
+    m = AxisymMethod(interface=interface)
+    r1, r2 = m.solve(case(1.0, 1.0)), m.solve(case(3.0, 9.0))
+    assert rel(r2.delta, 3 * r1.delta) < 1e-11 and rel(r2.a, 3 * r1.a) < 1e-11
+    assert rel(r2.p0, r1.p0) < 1e-11
+    r3 = m.solve(case(1.0, 1.5))
+    assert r3.delta > r1.delta and r3.a > r1.a and r3.p0 > r1.p0
