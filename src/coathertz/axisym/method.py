@@ -20,6 +20,7 @@ from coathertz.axisym.solver import (
     initial_radius,
     peak_pressure,
     pressure,
+    pressure_shape,
     solve_load,
 )
 from coathertz.case import ContactCase
@@ -177,7 +178,8 @@ class AxisymMethod:
             n_modes = default_modes(pc.h_min / sol.a, self.c_modes)
             sol, more = solve_load(pc, R, case.W, n_modes, rule, self.decay, self.rtol, a_start=sol.a)
             iters += more
-        p0, r_p0 = peak_pressure(pc, sol)
+        shape = pressure_shape(sol)
+        p0, r_p0 = peak_pressure(pc, sol, shape=shape)
         meta: dict[str, Any] = {
             "r_p0": r_p0,
             "n_modes": n_modes,
@@ -204,7 +206,7 @@ class AxisymMethod:
             rho_in = 0.5 * (1.0 - np.cos(np.linspace(0.0, math.pi, 121)))
             rho = np.concatenate([rho_in, np.linspace(1.0, 3.0, 25)[1:]])
             p = np.zeros_like(rho)
-            p[: rho_in.size] = pressure(pc, sol, rho_in)
+            p[: rho_in.size] = pressure(pc, sol, rho_in, shape)
             fields = {
                 "r": rho * sol.a,
                 "pressure": p,

@@ -267,14 +267,16 @@ def pressure(pc: PairCompliance, sol: RadiusSolution, rho: np.ndarray,
     return (pc.E_ref / (math.pi * sol.a)) * np.sqrt(np.clip(1.0 - rho**2, 0.0, None)) * q
 
 
-def peak_pressure(pc: PairCompliance, sol: RadiusSolution, n_scan: int = 129) -> tuple[float, float]:
+def peak_pressure(pc: PairCompliance, sol: RadiusSolution, n_scan: int = 129,
+                  shape: np.ndarray | None = None) -> tuple[float, float]:
     """Maximum of ``p(r)`` and its radius ``r_p0`` [m] (0.0 on the axis).
 
     A scan on ``n_scan`` points (clustered at both ends) brackets the maximum; six zooms of
     9 points shrink the bracket by 4 each, and a parabola through the best three points gives
     the peak (``p`` is smooth in ``rho``; the value is exact to ~1e-13 relative).
     """
-    shape = pressure_shape(sol)
+    if shape is None:
+        shape = pressure_shape(sol)
 
     def pv(r: np.ndarray) -> np.ndarray:
         return pressure(pc, sol, r, shape)
