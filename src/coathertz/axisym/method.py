@@ -185,7 +185,7 @@ class AxisymMethod:
             "n_modes": n_modes,
             "n_xi": sol.n_xi,
             "iterations": iters,
-            "h_over_a": pc.h_min / sol.a if math.isfinite(pc.h_min) else math.inf,
+            "h_over_a": pc.h_min / sol.a if math.isfinite(pc.h_min) else None,  # None: uncoated
             "E_ref": pc.E_ref,
             "interface": self.interface,
             "settings": dict(self.settings()),
