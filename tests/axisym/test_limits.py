@@ -4,6 +4,7 @@ on a rigid base (Winkler layer, Matthewson's incompressible layer, eq 10)."""
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -30,6 +31,7 @@ def test_homogeneous_is_hertz(indenter):
     assert rel(r.a, h.a0) < 1e-12
     assert rel(r.p0, h.p0) < 1e-12
     assert r.meta["r_p0"] == 0.0
+    json.dumps(r.scalars(), allow_nan=False)  # strict JSON (store)
     # the pressure profile is eq (1d)
     rr = r.fields["r"]
     inside = rr <= r.a
