@@ -1,0 +1,221 @@
+"""The exact axisymmetric method: :class:`AxisymMethod` (a :class:`coathertz.methods.Method`)."""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import time
+import warnings
+from collections.abc import Mapping, Sequence
+from dataclasses import asdict, dataclass
+from typing import Any, ClassVar
+
+import numpy as np
+
+from coathertz import errors
+from coathertz.axisym.kernel import INTERFACES, pair_compliance
+from coathertz.axisym.solver import (
+    XiRule,
+    displacement,
+    initial_radius,
+    peak_pressure,
+    pressure,
+    pressure_shape,
+    solve_load,
+)
+from coathertz.case import ContactCase
+from coathertz.errors import CoatHertzError
+from coathertz.results import ContactResult
+
+ModelValidityWarning = getattr(errors, "ModelValidityWarning", UserWarning)
+
+#: a/R above which the half-space (small-strain) model is flagged.
+VALIDITY_A_OVER_R = 0.1
+
+_CONTROLLER: Any = None
+
+
+def single_thread_blas() -> contextlib.AbstractContextManager:
+    """Pin BLAS/LAPACK to one thread while solving (``threadpoolctl``, if installed).
+
+    The Galerkin systems are at most ~160 x 160 and the xi products ~160 x 10^4: threaded BLAS
+    only adds wake-up and contention costs (measured on the 2 shared cores: ~480 ms per case
+    with the default threads against ~10 ms with one).
+    """
+    global _CONTROLLER
+    try:
+        from threadpoolctl import ThreadpoolController
+    except ImportError:  # pragma: no cover - optional
+        return contextlib.nullcontext()
+    if _CONTROLLER is None:
+        import scipy.linalg  # noqa: F401 - load scipy's BLAS before the controller looks for it
+
+        _CONTROLLER = ThreadpoolController()
+    return _CONTROLLER.limit(limits=1, user_api="blas")
+
+
+N_MIN, N_MAX = 16, 160
+
+
+def modes_needed(tau: float, c_modes: float = 7.0) -> int:
+    """Legendre modes for thickness ratio ``tau = h_min / a``: ``c_modes / sqrt(tau)`` (the
+    boundary layer of width ~h at the contact edge needs ``N^2 ~ a/h``), rounded up to a
+    multiple of 8 (so that cases share cached Bessel tables), at least ``N_MIN``."""
+    if not math.isfinite(tau):
+        return N_MIN
+    return max(math.ceil(c_modes / math.sqrt(max(tau, 1e-12)) / 8.0) * 8, N_MIN)
+
+
+def default_modes(tau: float, c_modes: float = 7.0) -> int:
+    """:func:`modes_needed` capped at ``N_MAX`` (cost grows like ``N^2 a/h``)."""
+    return min(modes_needed(tau, c_modes), N_MAX)
+
+
+@dataclass(frozen=True)
+class AxisymMethod:
+    """Exact (semi-analytical) frictionless axisymmetric contact on layered bodies.
+
+    Parameters
+    ----------
+    interface
+        ``bonded`` (eq 13, the paper's model) or ``frictionless`` coating/substrate interface.
+    n_modes
+        Legendre modes ``P_0, P_2, ..., P_{2N-2}`` of the auxiliary function; ``None``: automatic
+        from ``h/a`` (:func:`default_modes` with ``c_modes``).
+    c_modes
+        Constant of the automatic rule ``N = c_modes / sqrt(h/a)``.
+    order, panel
+        Gauss--Legendre nodes per panel and uniform panel width of the ``xi = k a`` quadrature.
+    decay
+        The ``xi`` integral stops at ``decay * a / h_min`` (``M`` ~ ``t^2 exp(-2 t)`` ~ 1e-10 there;
+        the neglected tail changes the results by < 1e-10, measured).
+    rtol
+        Tolerance on ``|log W(a) - log W|`` of the load iteration.
+    keep_fields
+        Return ``r``, ``pressure`` and ``u_z`` profiles in ``ContactResult.fields``.
+    """
+
+    interface: str = "bonded"
+    n_modes: int | None = None
+    c_modes: float = 7.0
+    order: int = 8
+    panel: float = 4.0
+    decay: float = 14.0
+    rtol: float = 1e-12
+    keep_fields: bool = True
+    name: str = "axisym"
+
+    cost: ClassVar[str] = "cheap"
+    marker: ClassVar[str] = "D"
+    label: ClassVar[str] = "exact axisymmetric"
+    reference_rank: ClassVar[int] = 30
+    source_packages: ClassVar[tuple[str, ...]] = ("coathertz.axisym",)
+
+    def __post_init__(self) -> None:
+        if self.interface not in INTERFACES:
+            raise CoatHertzError(f"interface must be one of {INTERFACES}, got {self.interface!r}")
+        if self.n_modes is not None and not (isinstance(self.n_modes, int) and 2 <= self.n_modes <= 400):
+            raise CoatHertzError(f"n_modes must be None or an integer in [2, 400], got {self.n_modes!r}")
+        if not (isinstance(self.c_modes, float | int) and 1.0 <= self.c_modes <= 100.0):
+            raise CoatHertzError(f"c_modes must be in [1, 100], got {self.c_modes!r}")
+        if not (isinstance(self.order, int) and 4 <= self.order <= 64):
+            raise CoatHertzError(f"order must be an integer in [4, 64], got {self.order!r}")
+        if not (isinstance(self.panel, float | int) and 0.1 <= self.panel <= 20.0):
+            raise CoatHertzError(f"panel must be in [0.1, 20], got {self.panel!r}")
+        if not (isinstance(self.decay, float | int) and 5.0 <= self.decay <= 100.0):
+            raise CoatHertzError(f"decay must be in [5, 100], got {self.decay!r}")
+        if not (isinstance(self.rtol, float) and 0.0 < self.rtol < 1e-3):
+            raise CoatHertzError(f"rtol must satisfy 0 < rtol < 1e-3, got {self.rtol!r}")
+
+    # registry metadata --------------------------------------------------------------------------
+    @classmethod
+    def settings_for(cls, resolution: str) -> dict:
+        """Constructor keyword arguments at a study resolution: the default quadrature everywhere
+        (converged to ~1e-9 and costing milliseconds), without the profiles (studies compare
+        scalars; ``keep_fields`` does not change the numbers and is not in :meth:`settings`)."""
+        if resolution not in ("tiny", "quick", "full"):
+            raise CoatHertzError(f"resolution must be one of ('tiny', 'quick', 'full'), got {resolution!r}")
+        return {"keep_fields": False}
+
+    # Method protocol ---------------------------------------------------------------------------
+    def settings(self) -> Mapping[str, Any]:
+        d = asdict(self)
+        for k in ("name", "keep_fields"):
+            d.pop(k)
+        return d
+
+    def supports(self, case: ContactCase) -> bool:
+        """Circular point contacts (``Rx = Ry`` finite): the problem is axisymmetric."""
+        return case.is_circular and math.isfinite(case.Rx)
+
+    def _rule(self) -> XiRule:
+        return XiRule(order=self.order, panel=float(self.panel))
+
+    def solve(self, case: ContactCase) -> ContactResult:
+        """Solve one circular case under load control; raises for elliptical cases."""
+        with single_thread_blas():
+            return self._solve(case)
+
+    def _solve(self, case: ContactCase) -> ContactResult:
+        if not isinstance(case, ContactCase):
+            raise CoatHertzError(f"case must be a ContactCase, got {case!r}")
+        if not self.supports(case):
+            raise CoatHertzError(
+                "axisym: the case is not axisymmetric (relative radii "
+                f"Rx = {case.Rx * 1e3:.4g} mm, Ry = {case.Ry * 1e3:.4g} mm differ); "
+                "the exact axisymmetric method needs a circular contact (use fft)"
+            )
+        t0 = time.perf_counter()
+        pc = pair_compliance(case, self.interface)
+        R = case.R
+        rule = self._rule()
+        a_init = initial_radius(pc, R, case.W)
+        auto = self.n_modes is None
+        n_modes = default_modes(pc.h_min / a_init, self.c_modes) if auto else self.n_modes
+        sol, iters = solve_load(pc, R, case.W, n_modes, rule, self.decay, self.rtol, a_start=a_init)
+        if auto and default_modes(pc.h_min / sol.a, self.c_modes) > n_modes:
+            # the estimate of a was too large: more modes at the converged radius
+            n_modes = default_modes(pc.h_min / sol.a, self.c_modes)
+            sol, more = solve_load(pc, R, case.W, n_modes, rule, self.decay, self.rtol, a_start=sol.a)
+            iters += more
+        shape = pressure_shape(sol)
+        p0, r_p0 = peak_pressure(pc, sol, shape=shape)
+        meta: dict[str, Any] = {
+            "r_p0": r_p0,
+            "n_modes": n_modes,
+            "n_xi": sol.n_xi,
+            "iterations": iters,
+            "h_over_a": pc.h_min / sol.a if math.isfinite(pc.h_min) else None,  # None: uncoated
+            "E_ref": pc.E_ref,
+            "interface": self.interface,
+            "settings": dict(self.settings()),
+        }
+        if auto and modes_needed(pc.h_min / sol.a, self.c_modes) > 1.5 * N_MAX:
+            msg = (f"h/a = {pc.h_min / sol.a:.3g}: the rule asks for "
+                   f"{modes_needed(pc.h_min / sol.a, self.c_modes)} Legendre modes, capped at {N_MAX}; "
+                   "a and p0 may be less accurate than 1e-8 (pass n_modes to refine)")
+            warnings.warn(msg, UserWarning, stacklevel=2)
+            meta["accuracy"] = msg
+        if sol.a / R > VALIDITY_A_OVER_R:
+            msg = (f"a/R = {sol.a / R:.3g} > {VALIDITY_A_OVER_R}: the half-space, small-strain "
+                   "model behind every method is outside its range")
+            warnings.warn(msg, ModelValidityWarning, stacklevel=2)
+            meta["validity"] = msg
+        fields: dict[str, np.ndarray] = {}
+        if self.keep_fields:
+            rho_in = 0.5 * (1.0 - np.cos(np.linspace(0.0, math.pi, 121)))
+            rho = np.concatenate([rho_in, np.linspace(1.0, 3.0, 25)[1:]])
+            p = np.zeros_like(rho)
+            p[: rho_in.size] = pressure(pc, sol, rho_in, shape)
+            fields = {
+                "r": rho * sol.a,
+                "pressure": p,
+                "u_z": displacement(pc, sol, rho, R, rule, self.decay),
+            }
+        meta["wall_time"] = time.perf_counter() - t0
+        return ContactResult(self.name, sol.delta, sol.a, p0, case.W, sol.a, sol.a, meta, fields)
+
+    def solve_many(self, cases: Sequence[ContactCase]) -> list[ContactResult]:
+        """Solve cases one after another (Bessel tables are shared through a cache)."""
+        with single_thread_blas():
+            return [self._solve(c) for c in cases]
