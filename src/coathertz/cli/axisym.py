@@ -11,8 +11,10 @@ HELP = "exact axisymmetric solution of one circular case (delta, a, p0 and its r
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
+    from coathertz.axisym.kernel import INTERFACES
+
     add_case_arguments(parser)
-    parser.add_argument("--interface", default="bonded", choices=["bonded", "frictionless"],
+    parser.add_argument("--interface", default=INTERFACES[0], choices=INTERFACES,
                         help="coating/substrate interface (default: bonded, the paper's model)")
     parser.add_argument("--modes", type=int, default=None, metavar="N",
                         help="Legendre modes of the Galerkin basis (default: automatic from h/a)")
@@ -25,13 +27,22 @@ def run(args: argparse.Namespace) -> int:
     import numpy as np
 
     from coathertz.axisym import AxisymMethod
-    from coathertz.cli._common import case_from_args, format_table, list_examples, print_json_or_header
+    from coathertz.cli._common import (
+        case_from_args,
+        check_output_file,
+        finish,
+        format_table,
+        list_examples,
+        print_json_or_header,
+    )
 
     if args.list_examples:
         return list_examples()
     case = case_from_args(args)
+    if args.save_fields:
+        check_output_file(args.save_fields, "--save-fields")
     method = AxisymMethod(interface=args.interface, n_modes=args.modes)
-    res = method.solve(case)
+    res = finish(case, method.solve(case))
     if args.save_fields:
         np.savez_compressed(args.save_fields, **{k: np.asarray(v) for k, v in res.fields.items()})
     if print_json_or_header(case, res, args.json):
@@ -49,8 +60,6 @@ def run(args: argparse.Namespace) -> int:
     ]
     print(format_table(["", "value", f"/ Hertz ({norm.kind})"], rows))
     print(f"maximum pressure {where}")
-    if "validity" in m:
-        print(f"warning: {m['validity']}")
     if args.save_fields:
         print(f"fields written to {args.save_fields}")
     return 0
