@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from conftest import coated
+from .conftest import coated
 
 from coathertz.axisym import AxisymMethod
 from coathertz.materials import RIGID

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from conftest import coated
+from .conftest import coated
 
 from coathertz.axisym import AxisymMethod
 from coathertz.casefile import load_case

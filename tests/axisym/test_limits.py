@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 import pytest
-from conftest import STEEL, coated, homogeneous
+from .conftest import STEEL, coated, homogeneous
 
 from coathertz.axisym import AxisymMethod
 from coathertz.hertz import hertz_circular

@@ -8,7 +8,7 @@ import warnings
 
 import numpy as np
 import pytest
-from conftest import R_SPHERE, STEEL, coated
+from .conftest import R_SPHERE, STEEL, coated
 
 from coathertz.axisym import AxisymMethod
 from coathertz.case import ContactCase
