@@ -30,7 +30,7 @@ from coathertz.fft import estimators
 from coathertz.fft.frf import INTERFACES
 from coathertz.fft.grid import DEFAULT_MARGIN, DEFAULT_N, REFIT_BELOW, Grid, check_n, grid_for_axes
 from coathertz.fft.influence import body_coefficients, circulant
-from coathertz.fft.solver import Convolver, get_backend, polonsky_keer
+from coathertz.fft.solver import Convolver, default_workers, get_backend, polonsky_keer
 from coathertz.hertz import pressure_elliptical
 from coathertz.materials import Body
 from coathertz.results import ContactResult
@@ -104,7 +104,10 @@ class FFTMethod:
         Estimator reported as ``a``: ``edge-fit`` (default, more accurate) or ``area``
         (the paper's ``sqrt(S/pi)``); both are always in ``meta``.
     backend, workers
-        ``numpy`` (scipy.fft with ``workers`` threads) or ``cupy``.
+        ``numpy`` or ``cupy``; ``workers`` FFT threads (``None``: by grid size, see
+        :func:`~coathertz.fft.solver.default_workers`: 1 up to n = 256 and in the worker
+        processes of a sweep, all cores above). With one thread the CG iteration runs in
+        buffers allocated once per solve (no grid-size allocation per iteration).
     keep_fields
         Return the pressure and displacement arrays in ``ContactResult.fields``.
     """
@@ -119,7 +122,7 @@ class FFTMethod:
     adapt: bool = True
     radius: str = "edge-fit"
     backend: str = "numpy"
-    workers: int = -1
+    workers: int | None = None
     keep_fields: bool = True
     name: str = "fft"
 
@@ -131,7 +134,11 @@ class FFTMethod:
             raise CoatHertzError(f"radius must be 'edge-fit' or 'area', got {self.radius!r}")
         if not (isinstance(self.tol, float | int) and 0 < self.tol < 1e-2):
             raise CoatHertzError(f"tol must satisfy 0 < tol < 1e-2, got {self.tol!r}")
-        get_backend(self.backend, self.workers)
+        get_backend(self.backend, self.fft_workers())
+
+    def fft_workers(self) -> int:
+        """FFT threads used (``workers``, or the default for ``n``)."""
+        return default_workers(self.n) if self.workers is None else self.workers
 
     # Method protocol ------------------------------------------------------------------
     def settings(self) -> Mapping[str, Any]:
@@ -215,7 +222,7 @@ class FFTMethod:
         self, cases: list[ContactCase], grid: Grid, p_prev: np.ndarray | None = None
     ) -> list[ContactResult]:
         t0 = time.perf_counter()
-        be = get_backend(self.backend, self.workers)
+        be = get_backend(self.backend, self.fft_workers())
         kern = np.stack([case_coefficients(c, grid, self.interface) for c in cases])
         g0 = np.stack([initial_gap(c, grid) for c in cases])
         W = np.array([c.W for c in cases])
