@@ -107,3 +107,90 @@ def edge_fit_axes(p: np.ndarray, grid: Grid, r_a: float, r_b: float) -> tuple[fl
     lim = 1.0 / cells
     k = min(max(k, 1.0 - lim), 1.0 + lim)
     return (r_a * k, r_b * k)
+
+
+#: Width of the band of cells outside the contact used by :func:`gap_fit_axes` [cells].
+GAP_BAND_CELLS = 2.0
+#: ``sin^2`` of the half-angle of the sectors around the axes used for an ellipse (30 deg).
+SECTOR_SIN2 = 0.25
+
+
+def gap_fit_axes(
+    p: np.ndarray,
+    gap: np.ndarray,
+    grid: Grid,
+    r_a: float,
+    r_b: float,
+    *,
+    circular: bool = False,
+    band_cells: float = GAP_BAND_CELLS,
+) -> tuple[float, float] | None:
+    """Semi-axes where the gap just outside the contact closes (sub-cell; see module docstring).
+
+    Near a smooth edge the gap grows like ``(r - a)^{3/2}``, so ``g^{2/3}`` is a smooth
+    function that crosses zero linearly at the edge. It is fitted by least squares on the
+    non-contact cells (``p = 0``, ``g > 0``) within ``band_cells`` cells outside the first
+    estimate ``(r_a, r_b)``: as a quadratic in ``S = (x/r_a)^2 + (y/r_b)^2`` for a circle
+    (``circular``); for an ellipse (where the gap's intensity varies along the edge) in a
+    sector of +-30 degrees around each axis, with ``sin^2`` of the angle from the axis and its
+    product with ``S - 1`` as extra terms; the roots on the axes are the semi-axes. The band scales with
+    the cell, not with the contact, so the fit's truncation error falls like ``dx^2``.
+
+    Returns ``None`` when the band holds too few cells or the fit has no root within two cells
+    of the estimate (the caller falls back to the area estimate).
+    """
+    if r_a <= 0 or r_b <= 0:
+        return None
+    x = grid.x / r_a
+    y = grid.y / r_b
+    X = np.broadcast_to((x * x)[None, :], grid.shape)
+    Y = np.broadcast_to((y * y)[:, None], grid.shape)
+    cells = min(r_a / grid.dx, r_b / grid.dy)
+    rho_max = (1.0 + band_cells / cells) ** 2
+    sel = (p <= 0) & (gap > 0) & (X + Y < rho_max)
+    if np.count_nonzero(sel) < (12 if circular else 24):
+        return None
+    Xs, Ys = X[sel], Y[sel]
+    v = np.cbrt(gap[sel]) ** 2
+    v = v / v.max()
+    lim = 2.0 / cells  # the contact set fixes the edge to within about a cell
+    if circular:
+        S = Xs + Ys - 1.0
+        c2, c1, c0 = np.polyfit(S, v, 2)
+        k = _root_near_one(c0, c1, c2)
+        if k is None or abs(k - 1.0) > lim:
+            return None
+        return (r_a * k, r_b * k)
+    # an ellipse: the gap's intensity varies along the edge, so each semi-axis is fitted in a
+    # sector around its axis, with the angular variation (sin^2 phi, even about the axis) of
+    # the root and of the slope as extra terms; the root on the axis is the semi-axis
+    S = Xs + Ys
+    ks = []
+    for across in (Ys, Xs):  # x axis: across = Y; y axis: across = X
+        s2 = across / S  # sin^2 of the angle from the axis (in scaled coordinates)
+        sec = s2 < SECTOR_SIN2
+        if np.count_nonzero(sec) < 12:
+            return None
+        t, w, vv = S[sec] - 1.0, s2[sec], v[sec]
+        A = np.stack([np.ones_like(t), t, t * t, w, w * t], axis=1)
+        c, *_ = np.linalg.lstsq(A, vv, rcond=None)
+        ks.append(_root_near_one(c[0], c[1], c[2]))
+    kx, ky = ks
+    if kx is None or ky is None or max(abs(kx - 1.0), abs(ky - 1.0)) > lim:
+        return None
+    return (r_a * kx, r_b * ky)
+
+
+def _root_near_one(c0: float, c1: float, c2: float) -> float | None:
+    """``sqrt(1 + t)`` for the root ``t`` of ``c0 + c1 t + c2 t^2`` nearest 0 (None if none)."""
+    if abs(c2) > 1e-12 * abs(c1):
+        roots = np.roots([c2, c1, c0])
+        roots = roots[np.isreal(roots)].real
+    elif c1 != 0:
+        roots = np.array([-c0 / c1])
+    else:
+        return None
+    if roots.size == 0:
+        return None
+    t = roots[np.argmin(np.abs(roots))]
+    return math.sqrt(1.0 + t) if t > -1.0 else None

@@ -247,15 +247,18 @@ class FFTMethod:
             p = sol.p[k]
             a_num = estimators.area_radius(p, grid)
             ra_m, rb_m = estimators.moment_axes(p, grid)
-            if c.is_circular and self.spacing_ratio in (None, 1.0):
+            circular = c.is_circular and self.spacing_ratio in (None, 1.0)
+            if circular:
                 ra_m = rb_m = a_num
-            ra_f, rb_f = estimators.edge_fit_axes(p, grid, ra_m, rb_m)
+            gap = sol.u[k] + g0[k] - sol.delta[k]
+            fit = estimators.gap_fit_axes(p, gap, grid, ra_m, rb_m, circular=circular)
+            ra_f, rb_f = fit if fit is not None else (ra_m, rb_m)
             m = p > 0
             ext_x = float(np.max(np.abs(X[m]))) + grid.dx / 2 if np.any(m) else 0.0
             ext_y = float(np.max(np.abs(Y[m]))) + grid.dy / 2 if np.any(m) else 0.0
-            h_min = min((b.coating.h for b in (c.body1, c.body2) if b.is_coated), default=math.inf)
-            use_fit = self.radius == "edge-fit" and estimators.edge_fit_valid(grid, ra_m, rb_m, h_min)
+            use_fit = self.radius == "edge-fit" and fit is not None
             ra, rb = (ra_f, rb_f) if use_fit else (ra_m, rb_m)
+            i0 = np.unravel_index(int(np.argmax(p)), p.shape)
             meta = {
                 "grid": grid.describe(),
                 "iterations": int(sol.iterations[k]),
@@ -274,6 +277,8 @@ class FFTMethod:
                 "r_a_fit": ra_f,
                 "r_b_fit": rb_f,
                 "radius_estimator": "edge-fit" if use_fit else "area",
+                "radius_fit_failed": fit is None,
+                "r_p0": float(math.hypot(grid.x[i0[1]], grid.y[i0[0]])),
                 "extent": [ext_x, ext_y],
                 "settings": dict(self.settings()),
             }
