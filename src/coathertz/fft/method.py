@@ -101,8 +101,13 @@ class FFTMethod:
         Re-grid on the computed contact when it fills less than ``REFIT_BELOW`` of the
         estimate or touches the margin (see :mod:`coathertz.fft.grid`).
     radius
-        Estimator reported as ``a``: ``edge-fit`` (default, more accurate) or ``area``
-        (the paper's ``sqrt(S/pi)``); both are always in ``meta``.
+        Estimator reported as ``a``: ``edge-fit`` (default, sub-cell) or ``area`` (the paper's
+        ``sqrt(S/pi)``, ``meta["a_num"]``); both are always in ``meta``. The edge fit is the
+        closing of the gap outside the contact for coated bodies and ellipses
+        (:func:`~coathertz.fft.estimators.gap_fit_axes`) and the wide-band fit of ``p^2``
+        (exact for Hertz, :func:`~coathertz.fft.estimators.edge_fit_axes`) for uncoated
+        circular contacts;
+        ``meta["radius_estimator"]`` names the one used (``area`` where the fit failed).
     backend, workers
         ``numpy`` or ``cupy``; ``workers`` FFT threads (``None``: by grid size, see
         :func:`~coathertz.fft.solver.default_workers`: 1 up to n = 256 and in the worker
@@ -250,8 +255,13 @@ class FFTMethod:
             circular = c.is_circular and self.spacing_ratio in (None, 1.0)
             if circular:
                 ra_m = rb_m = a_num
-            gap = sol.u[k] + g0[k] - sol.delta[k]
-            fit = estimators.gap_fit_axes(p, gap, grid, ra_m, rb_m, circular=circular)
+            if c.is_coated or not circular:
+                gap = sol.u[k] + g0[k] - sol.delta[k]
+                fit = estimators.gap_fit_axes(p, gap, grid, ra_m, rb_m, circular=circular)
+                fit_name = "gap-fit"
+            else:  # circular Hertz: p^2 is exactly linear in r^2, a wide band averages best
+                fit = estimators.edge_fit_axes(p, grid, ra_m, rb_m)
+                fit_name = "pressure-fit"
             ra_f, rb_f = fit if fit is not None else (ra_m, rb_m)
             m = p > 0
             ext_x = float(np.max(np.abs(X[m]))) + grid.dx / 2 if np.any(m) else 0.0
@@ -276,7 +286,7 @@ class FFTMethod:
                 "a_fit": math.sqrt(ra_f * rb_f),
                 "r_a_fit": ra_f,
                 "r_b_fit": rb_f,
-                "radius_estimator": "edge-fit" if use_fit else "area",
+                "radius_estimator": fit_name if use_fit else "area",
                 "radius_fit_failed": fit is None,
                 "r_p0": float(math.hypot(grid.x[i0[1]], grid.y[i0[0]])),
                 "extent": [ext_x, ext_y],
