@@ -4,10 +4,11 @@ Reports, in one run and in the same allocator state (the FFT pair is timed in th
 right before each solve, on a machine that may be shared):
 
 1. for n = 128, 256, 512 and three cases (homogeneous; E = 3, H = 0.3; E = 1/3, H = 1): the
-   time of one forward + inverse real FFT of the padded grid (2n x 2n, scipy.fft, the solver's
-   thread count), the median solve time with cached coefficients, their ratio ("FFT-pair
-   equivalents", issue 13 goal <= 40 at 128 and <= 60 at 512), the CG iterations and the number
-   of convolutions (transform pairs) the solver counted;
+   time of one forward + inverse real FFT of the padded grid (2n x 2n, ``scipy.fft.rfft2`` and
+   ``irfft2``, the solver's thread count) and of one solve with cached coefficients, timed in
+   alternating rounds; the median of the per-round ratios ("FFT-pair equivalents", issue 13
+   goal <= 40 at 128 and <= 60 at 512); the CG iterations and the transform pairs the solver
+   counted (coarse-grid pairs of the nested start count a quarter);
 2. the time of the fig-3 sweep: 25 modulus ratios x 101 H in [0.01, 3] at 128 x 128, solved
    with ``FFTMethod.solve_many`` (one grid per modulus ratio, warm start along H);
    ``--ratios k`` takes every k-th modulus ratio (same per-case mix of H) and scales to 2525.
@@ -50,13 +51,13 @@ def case_for(E: float, H: float) -> ContactCase:
     return c0.with_thickness(H * c0.a0s)
 
 
-def time_pair(n: int, workers: int, repeat: int) -> float:
-    """Median over 5 rounds of the mean time of rfft2 + irfft2 on the 2n x 2n padded grid."""
+def time_pair(n: int, workers: int, repeat: int, rounds: int = 5) -> float:
+    """Median over rounds of the mean time of rfft2 + irfft2 on the 2n x 2n padded grid."""
     a = np.random.default_rng(0).random((n, n))
     s = (2 * n, 2 * n)
     fft.irfft2(fft.rfft2(a, s=s, workers=workers), s=s, workers=workers)
     rounds = []
-    for _ in range(5):
+    for _ in range(rounds):
         t = time.perf_counter()
         for _ in range(repeat):
             fft.irfft2(fft.rfft2(a, s=s, workers=workers), s=s, workers=workers)
@@ -64,15 +65,23 @@ def time_pair(n: int, workers: int, repeat: int) -> float:
     return float(np.median(rounds))
 
 
-def time_solve(case: ContactCase, m: FFTMethod, repeat: int):
-    """(median of solves with cached coefficients, last result)."""
+def time_solve(case: ContactCase, m: FFTMethod, n: int, workers: int, repeat: int):
+    """Interleaved rounds of (FFT pairs, one solve) with cached coefficients.
+
+    Returns (median pair time, median solve time, median of the per-round ratios, result):
+    on a shared machine the per-round ratio is steadier than either time.
+    """
     r = m.solve(case)  # builds and caches the coefficients
-    times = []
+    pairs, solves, ratios = [], [], []
     for _ in range(repeat):
+        pair = time_pair(n, workers, repeat=max(5, 2000 // n), rounds=1)
         t = time.perf_counter()
         r = m.solve(case)
-        times.append(time.perf_counter() - t)
-    return float(np.median(times)), r
+        dt = time.perf_counter() - t
+        pairs.append(pair)
+        solves.append(dt)
+        ratios.append(dt / pair)
+    return float(np.median(pairs)), float(np.median(solves)), float(np.median(ratios)), r
 
 
 def main() -> None:
@@ -94,14 +103,14 @@ def main() -> None:
         workers = m.workers if m.workers is not None else -1
         if hasattr(m, "fft_workers"):
             workers = m.fft_workers()
-        repeat = {128: 7, 256: 5}.get(n, 3)
+        repeat = {128: 9, 256: 7}.get(n, 5)
         for label, E, H in CASES:
             case = case_for(E, H)
-            pair = time_pair(n, workers, repeat=max(10, 4000 // n))
-            t, r = time_solve(case, m, repeat)
+            pair, t, ratio, r = time_solve(case, m, n, workers, repeat)
+            conv = r.meta["convolutions_batch"] + r.meta.get("coarse_pair_equivalents_batch", 0)
             print(f"n = {n:4d} {label:12s}: pair {pair * 1e3:7.3f} ms, solve {t * 1e3:8.1f} ms, "
-                  f"ratio {t / pair:6.1f} pairs; {r.meta['iterations']:3d} iterations, "
-                  f"{r.meta['convolutions_batch']:3d} convolutions (workers {workers})")
+                  f"ratio {ratio:6.1f} pairs; {r.meta['iterations']:3d} iterations, "
+                  f"{conv:5.1f} transform pairs counted (workers {workers})")
             saved[f"{n} {label}"] = {"delta": r.delta, "a": r.a, "a_num": r.meta["a_num"],
                                      "p0": r.p0}
     if args.save:
