@@ -86,7 +86,7 @@ def time_solve(case: ContactCase, m: FFTMethod, n: int, workers: int, repeat: in
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--ns", type=int, nargs="+", default=[128, 256, 512])
+    ap.add_argument("--ns", type=int, nargs="*", default=[128, 256, 512])
     ap.add_argument("--workers", type=int, default=None,
                     help="FFT threads (default: the method's default)")
     ap.add_argument("--ratios", type=int, default=5,

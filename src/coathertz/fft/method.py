@@ -30,7 +30,13 @@ from coathertz.fft import estimators
 from coathertz.fft.frf import INTERFACES
 from coathertz.fft.grid import DEFAULT_MARGIN, DEFAULT_N, REFIT_BELOW, Grid, check_n, grid_for_axes
 from coathertz.fft.influence import body_coefficients, circulant
-from coathertz.fft.solver import Convolver, default_workers, get_backend, polonsky_keer
+from coathertz.fft.solver import (
+    Convolver,
+    default_workers,
+    get_backend,
+    polonsky_keer,
+    prefer_precondition,
+)
 from coathertz.hertz import pressure_elliptical
 from coathertz.materials import Body
 from coathertz.results import ContactResult
@@ -100,8 +106,11 @@ class FFTMethod:
         the same contact set (measured on four coated cases at n = 128), far below the
         discretisation error.
     precondition
-        CG direction preconditioned by ``|k|`` (:func:`~coathertz.fft.solver.polonsky_keer`);
-        off by default: it fails on extremely thin incompressible layers on a rigid base.
+        CG direction preconditioned by ``|k|`` (:func:`~coathertz.fft.solver.polonsky_keer`):
+        ``True``, ``False`` or ``None`` (default: where it pays,
+        :func:`~coathertz.fft.solver.prefer_precondition`, i.e. where the kernel behaves like
+        a half-space's ``1/|k|``; thin layers on a rigid base are already well conditioned
+        and the preconditioner slows them down up to 5x).
     nested
         Start a solve without a warm start from the solution on the grid with cells twice
         as large (``n >= 64``): about 20 % fewer transform-pair equivalents in all.
@@ -131,7 +140,7 @@ class FFTMethod:
     interface: str = "bonded"
     tol: float = 1e-6
     max_iter: int = 2000
-    precondition: bool = False
+    precondition: bool | None = None
     nested: bool = True
     adapt: bool = True
     radius: str = "edge-fit"
@@ -278,10 +287,11 @@ class FFTMethod:
         if p_prev is None and self.nested and min(grid.nx, grid.ny) >= NESTED_MIN_N:
             p_init, nested_conv = self._coarse_start(cases, grid, be)
         t1 = time.perf_counter()
-        conv = Convolver(kern, be, spacing=(grid.dy, grid.dx) if self.precondition else None)
+        conv = Convolver(kern, be, spacing=(grid.dy, grid.dx))
+        pre = prefer_precondition(conv) if self.precondition is None else self.precondition
         sol = polonsky_keer(
             conv, g0, W, grid.cell_area, tol=self.tol, max_iter=self.max_iter,
-            p_init=np.stack(p_init), precondition=self.precondition,
+            p_init=np.stack(p_init), precondition=pre,
         )
         t_setup = t1 - t0
         per_case = (time.perf_counter() - t0) / len(cases)
@@ -315,6 +325,7 @@ class FFTMethod:
                 "penetration": float(sol.penetration[k]),
                 "convolutions_batch": int(sol.convolutions),
                 "coarse_pair_equivalents_batch": float(nested_conv),
+                "preconditioned": bool(pre),
                 "batch": len(cases),
                 "wall_time": per_case,
                 "setup_time_batch": t_setup,

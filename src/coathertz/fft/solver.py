@@ -224,6 +224,38 @@ class Convolver:
             u[k] += tmp
 
 
+#: :func:`prefer_precondition` chooses the ``|k|`` preconditioner when it shrinks the spread
+#: of the kernel's transform by more than this factor.
+PRECONDITION_GAIN = 30.0
+
+
+def prefer_precondition(conv: Convolver) -> bool:
+    """Whether the ``|k|`` preconditioner pays on this kernel (every problem of the batch).
+
+    CG needs about ``sqrt(kappa)`` iterations, ``kappa`` the spread (max/min) of the
+    operator's spectrum; a preconditioned iteration costs two transform pairs instead of one.
+    The spread is read on the ``kx`` axis of the kernel transform, without and with the
+    factor ``|k|``. A half-space (``K ~ 1/|k|``): about 120 -> 1.2 at n = 128; a thin layer on
+    a rigid base (``K`` nearly flat, or rising like ``k^2`` when incompressible): 3-20 ->
+    20-6000. Measured over 28 coated cases at n = 128, preconditioning helped (by up to 40 %)
+    wherever the ratio exceeded 30 and cost up to 5x where it was below 2; between, the two
+    were within 10 %.
+    """
+    if conv.mhat is None:
+        return False
+    kh = conv.backend.to_numpy(conv.khat)
+    mh = conv.backend.to_numpy(conv.mhat)
+    prof = np.abs(kh[..., 0, 1:].real)
+    prof = prof.reshape(-1, prof.shape[-1])
+    k = mh[0, 1:]
+    if np.any(prof <= 0):
+        return False
+    gain = (prof.max(axis=1) / prof.min(axis=1)) / (
+        (prof * k).max(axis=1) / (prof * k).min(axis=1)
+    )
+    return bool(np.all(gain > PRECONDITION_GAIN))
+
+
 @dataclass
 class PKSolution:
     """Result of :func:`polonsky_keer` (batched arrays, numpy)."""
