@@ -6,6 +6,12 @@
 with load control (:mod:`coathertz.fft.solver`) and measures it
 (:mod:`coathertz.fft.estimators`).
 
+A solve without a warm start begins from the solution on the grid with cells twice as large
+(recursively, ``nested``); the ``|k|`` preconditioner is applied where it pays
+(:func:`~coathertz.fft.solver.prefer_precondition`). The contact radius is the sub-cell closing
+of the gap outside the contact (:func:`~coathertz.fft.estimators.gap_fit_axes`); the paper's
+``sqrt(S/pi)`` stays in ``meta["a_num"]``.
+
 For sweeps use :meth:`FFTMethod.solve_many` (or :func:`solve_many`): cases sharing a grid (in the
 fig-3 study every ``H`` of one modulus ratio does: the grid depends only on ``a0s`` and ``a0c``)
 are solved as one batch with stacked arrays, and the coefficient transforms are cached per
@@ -122,8 +128,8 @@ class FFTMethod:
         ``sqrt(S/pi)``, ``meta["a_num"]``); both are always in ``meta``. The edge fit is the
         closing of the gap outside the contact for coated bodies and ellipses
         (:func:`~coathertz.fft.estimators.gap_fit_axes`) and the wide-band fit of ``p^2``
-        (exact for Hertz, :func:`~coathertz.fft.estimators.edge_fit_axes`) for uncoated
-        circular contacts;
+        (exact for Hertz, :func:`~coathertz.fft.estimators.edge_fit_axes`) for circular
+        contacts of uncoated bodies (or coatings identical to their substrates);
         ``meta["radius_estimator"]`` names the one used (``area`` where the fit failed).
     backend, workers
         ``numpy`` or ``cupy``; ``workers`` FFT threads (``None``: by grid size, see
@@ -303,11 +309,15 @@ class FFTMethod:
             circular = c.is_circular and self.spacing_ratio in (None, 1.0)
             if circular:
                 ra_m = rb_m = a_num
-            if c.is_coated or not circular:
+            hertzian = all(
+                b.coating is None or b.coating.material == b.material for b in (c.body1, c.body2)
+            )
+            if not (hertzian and circular):
                 gap = sol.u[k] + g0[k] - sol.delta[k]
                 fit = estimators.gap_fit_axes(p, gap, grid, ra_m, rb_m, circular=circular)
                 fit_name = "gap-fit"
-            else:  # circular Hertz: p^2 is exactly linear in r^2, a wide band averages best
+            else:  # circular Hertz (also a coating identical to its substrate): p^2 is exactly
+                # linear in r^2, a wide band averages the collocation scatter best
                 fit = estimators.edge_fit_axes(p, grid, ra_m, rb_m)
                 fit_name = "pressure-fit"
             ra_f, rb_f = fit if fit is not None else (ra_m, rb_m)
