@@ -11,11 +11,25 @@ Efficiency
 ----------
 * the iteration is written on whole arrays (no Python loop over cells) and works on a *batch*
   of ``B`` problems sharing one grid: arrays are ``(B, ny, nx)``, reductions are per problem;
-* ``scipy.fft`` caches its plans; ``workers`` sets its threads; the kernel transform is
-  computed once per (grid, bodies) and reused;
+* the work arrays (pressure, gap, direction, its response, masks, the transform buffers of
+  :class:`Convolver`) are allocated once per solve; the iteration runs in in-place ufuncs
+  and transforms with ``out=`` / ``overwrite_x``, so no grid-size array is allocated inside
+  it (numpy backend; tested with ``tracemalloc``). Fresh large arrays each iteration cost
+  page faults worth about half a solve at n <= 256 (issue 13);
+* ``scipy.fft`` caches its plans; ``workers`` sets its threads (1 by default up to n = 256,
+  :func:`default_workers`); the kernel transform is computed once per (grid, bodies);
 * the displacement is updated from the search direction's response
-  (``u <- s (u - tau K t)``), so an iteration costs one convolution, except when the active set
-  changed (clipped or re-activated points) or every ``REFRESH`` iterations (fresh ``K p``);
+  (``u <- s (u - tau K t)``), so an iteration costs one convolution. When the projections
+  (clipping negative pressures, re-activating overlapping points) change at most
+  :data:`MAX_DIRECT_CELLS` cells, their response is added directly from the kernel; more
+  changes, and every ``REFRESH`` iterations, take a fresh ``K p``;
+* the ``|k|`` preconditioner (:meth:`Convolver.precondition`) costs a second transform pair
+  per iteration; :func:`prefer_precondition` applies it where the kernel is half-space-like
+  (iterations then stay flat in n: 9-18 at n = 128-512), not on thin layers over a rigid
+  base (already well conditioned, 6-28 iterations without). With the nested start of
+  :class:`~coathertz.fft.method.FFTMethod`, the transform pairs per solve (coarse pairs
+  counted a quarter) are 12-48 at n = 128, 18-47 at 256, 27-48 at 512 over 30 cases (the
+  previous path: 45-97 for the benchmark cases, growing with n);
 * the array namespace is chosen at run time (``backend="numpy"`` or ``"cupy"``), so the same
   code runs on a GPU with CuPy.
 
@@ -26,6 +40,7 @@ Nomenclature: ``p`` pressure [Pa] per cell, ``u`` total surface displacement of 
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -34,6 +49,28 @@ import numpy as np
 from coathertz.errors import CoatHertzError, ConvergenceError
 
 REFRESH = 16
+#: Up to this many cells changed by the projections, their response is added directly from the
+#: kernel (three passes over the grid per cell) instead of a fresh transform pair; the two cost
+#: about the same at ~20 cells for n = 128-512 (the pair's cost per cell grows like log n).
+MAX_DIRECT_CELLS = 16
+
+
+#: Grids with at most this many cells per side use one FFT thread by default: two threads were
+#: slower there (128^2: 44 vs 27 ms per solve, issue 13), they pay off from 512^2 (1.25-1.46x).
+SINGLE_THREAD_MAX_N = 256
+
+
+def default_workers(n: int) -> int:
+    """FFT threads for an ``n x n`` grid: 1 up to :data:`SINGLE_THREAD_MAX_N`, else all cores.
+
+    Inside a worker process of a sweep (a ``multiprocessing`` child) it is always 1: the sweep
+    already keeps the cores busy with one process each.
+    """
+    import multiprocessing
+
+    if n <= SINGLE_THREAD_MAX_N or multiprocessing.parent_process() is not None:
+        return 1
+    return -1
 
 
 @dataclass(frozen=True)
@@ -83,6 +120,22 @@ class Convolver:
 
     ``spacing = (dy, dx)`` enables :meth:`precondition`, the multiplication by ``|k|`` (the
     inverse of the half-space FRF ``2/(E* |k|)`` up to a constant factor, which CG does not see).
+
+    Work buffers
+    ------------
+    On the numpy backend the transform is done axis by axis into two buffers allocated once per
+    Convolver and batch shape: a real FFT of the ``ny`` non-zero rows (length ``2 nx``,
+    ``numpy.fft.rfft`` with ``out=``), a complex FFT of the ``2 ny``-long columns in place
+    (``scipy.fft.fft`` with ``overwrite_x`` on a complex array, ``workers`` threads), the
+    product with ``khat`` in place, the inverse column FFT in place and the inverse real FFT
+    of the first ``ny`` rows only (the others are cut off). No grid-size array is allocated
+    per call when ``out`` is given, and the zero rows and the discarded half are never
+    transformed: 1.3-2x faster than a padded ``rfft2``/``irfft2`` pair (measured at
+    n = 128-512, one thread, 2 shared cores).
+
+    :meth:`add_cells` adds the response to pressure on a few cells directly from the kernel in
+    real space (``G``, offsets ``-(n-1)..(n-1)``), which is cheaper than a transform pair when
+    only a few cells change.
     """
 
     def __init__(self, kernel_circ, backend: Backend, spacing: tuple[float, float] | None = None):
@@ -97,19 +150,117 @@ class Convolver:
             ky = 2 * np.pi * np.fft.fftfreq(self.shape2[0], dy)
             kx = 2 * np.pi * np.fft.rfftfreq(self.shape2[1], dx)
             self.mhat = backend.asarray(np.hypot(ky[:, None], kx[None, :]) * dx)
+        self._kc = kc
+        self._G = None
+        self._buffers: dict = {}
 
-    def __call__(self, p):
+    @property
+    def buffered(self) -> bool:
+        """Whether calls run in preallocated buffers (the numpy backend)."""
+        return self.backend.name == "numpy"
+
+    def _bufs(self, lead: tuple):
+        b = self._buffers.get(lead)
+        if b is None:
+            ny, nx = self.ny, self.nx
+            b = (np.empty((*lead, 2 * ny, nx + 1), complex), np.empty((*lead, ny, 2 * nx)))
+            self._buffers[lead] = b
+        return b
+
+    def _apply(self, p, mult, out=None):
+        ny, nx = self.ny, self.nx
+        if self.buffered:
+            # rows: numpy.fft with out= (the ny non-zero rows only); columns: scipy.fft in place
+            # (overwrite_x on a complex array writes into it), with the backend's threads
+            sf, w = self.backend.fft, self.backend.workers
+            col, back = self._bufs(tuple(p.shape[:-2]))
+            np.fft.rfft(p, n=2 * nx, axis=-1, out=col[..., :ny, :])
+            col[..., ny:, :] = 0.0
+            r = sf.fft(col, axis=-2, overwrite_x=True, workers=w)
+            if not np.shares_memory(r, col):  # pragma: no cover - scipy always works in place
+                col[...] = r
+            np.multiply(col, mult, out=col)
+            r = sf.ifft(col, axis=-2, overwrite_x=True, workers=w)
+            if not np.shares_memory(r, col):  # pragma: no cover
+                col[...] = r
+            np.fft.irfft(col[..., :ny, :], n=2 * nx, axis=-1, out=back)
+            res = back[..., :ny, :nx]
+            if out is None:
+                return res.copy()
+            out[...] = res
+            return out
         b = self.backend
         ph = b.rfft2(p, s=self.shape2)
-        ph *= self.khat
-        return b.irfft2(ph, s=self.shape2)[..., : self.ny, : self.nx]
+        ph *= mult
+        res = b.irfft2(ph, s=self.shape2)[..., :ny, :nx]
+        if out is None:
+            return res
+        out[...] = res
+        return out
 
-    def precondition(self, r):
+    def __call__(self, p, out=None):
+        """``K * p``; written into ``out`` when given (no allocation on the buffered path)."""
+        return self._apply(p, self.khat, out)
+
+    def precondition(self, r, out=None):
         """``|k| r`` on the padded grid (an approximate inverse of the half-space operator)."""
-        b = self.backend
-        rh = b.rfft2(r, s=self.shape2)
-        rh *= self.mhat
-        return b.irfft2(rh, s=self.shape2)[..., : self.ny, : self.nx]
+        return self._apply(r, self.mhat, out)
+
+    def prepare_cells(self):
+        """The kernel by offset, ``G[., ny - 1 + dy, nx - 1 + dx]`` (built once)."""
+        if self._G is None:
+            kc = self.backend.to_numpy(self._kc)
+            oy = np.arange(-(self.ny - 1), self.ny) % self.shape2[0]
+            ox = np.arange(-(self.nx - 1), self.nx) % self.shape2[1]
+            G = kc[..., oy[:, None], ox[None, :]]
+            self._G = G if G.ndim == 3 else G[None]
+        return self._G
+
+    def add_cells(self, u, k: int, iy, ix, c, tmp) -> None:
+        """``u[k] += sum_j c_j K(. - cell_j)`` for a few cells ``(iy_j, ix_j)`` of problem ``k``.
+
+        ``tmp`` is an ``(ny, nx)`` scratch array. Exact (no transform round-off); costs three
+        passes over the grid per cell.
+        """
+        G = self.prepare_cells()[k if self._G.shape[0] > 1 else 0]
+        ny, nx = self.ny, self.nx
+        for i, j, cj in zip(iy, ix, c, strict=True):
+            # copy first: a ufunc on the strided view would allocate an iteration buffer
+            np.copyto(tmp, G[ny - 1 - i : 2 * ny - 1 - i, nx - 1 - j : 2 * nx - 1 - j])
+            tmp *= cj
+            u[k] += tmp
+
+
+#: :func:`prefer_precondition` chooses the ``|k|`` preconditioner when it shrinks the spread
+#: of the kernel's transform by more than this factor.
+PRECONDITION_GAIN = 30.0
+
+
+def prefer_precondition(conv: Convolver) -> bool:
+    """Whether the ``|k|`` preconditioner pays on this kernel (every problem of the batch).
+
+    CG needs about ``sqrt(kappa)`` iterations, ``kappa`` the spread (max/min) of the
+    operator's spectrum; a preconditioned iteration costs two transform pairs instead of one.
+    The spread is read on the ``kx`` axis of the kernel transform, without and with the
+    factor ``|k|``. A half-space (``K ~ 1/|k|``): about 120 -> 1.2 at n = 128; a thin layer on
+    a rigid base (``K`` nearly flat, or rising like ``k^2`` when incompressible): 3-20 ->
+    20-6000. Measured over 28 coated cases at n = 128, preconditioning helped (by up to 40 %)
+    wherever the ratio exceeded 30 and cost up to 5x where it was below 2; between, the two
+    were within 10 %.
+    """
+    if conv.mhat is None:
+        return False
+    kh = conv.backend.to_numpy(conv.khat)
+    mh = conv.backend.to_numpy(conv.mhat)
+    prof = np.abs(kh[..., 0, 1:].real)
+    prof = prof.reshape(-1, prof.shape[-1])
+    k = mh[0, 1:]
+    if np.any(prof <= 0):
+        return False
+    gain = (prof.max(axis=1) / prof.min(axis=1)) / (
+        (prof * k).max(axis=1) / (prof * k).min(axis=1)
+    )
+    return bool(np.all(gain > PRECONDITION_GAIN))
 
 
 @dataclass
@@ -137,6 +288,7 @@ def polonsky_keer(
     max_iter: int = 2000,
     p_init=None,
     precondition: bool = False,
+    callback: Callable[[int], None] | None = None,
 ) -> PKSolution:
     """Solve ``B`` frictionless normal contact problems on one grid (Polonsky & Keer 1999).
 
@@ -161,6 +313,9 @@ def polonsky_keer(
         iteration count roughly halves and stops growing with ``n`` (31-36 -> 17-27 at n = 128,
         57-105 -> 24-35 at n = 512), each iteration costs one more FFT pair, and at equal ``tol``
         the solution is 10-100x closer to the converged one.
+    callback
+        Called with the iteration number at the start of each iteration (diagnostics; the
+        allocation test uses it).
     """
     if precondition and conv.mhat is None:
         raise CoatHertzError("precondition=True needs a Convolver built with spacing=(dy, dx)")
@@ -179,6 +334,7 @@ def polonsky_keer(
         B = max(B, g0.shape[0])
     W = xp.broadcast_to(W, (B,)).copy()
     ax = (-2, -1)
+    shape = (B, ny, nx)
 
     def bsum(a):
         return a.sum(axis=ax)
@@ -189,61 +345,109 @@ def polonsky_keer(
     def bdot(a, c):
         return xp.einsum("bij,bij->b", a, c)
 
-    p = xp.ones((B, ny, nx)) if p_init is None else xp.broadcast_to(b.asarray(p_init), (B, ny, nx))
-    p = xp.maximum(p, 0.0)
-    p = p * col(W / (bsum(p) * cell_area))
-    u = conv(p)
+    # work buffers, allocated once: nothing of grid size is allocated inside the iteration
+    # (numpy backend with one FFT thread; see Convolver)
+    p = xp.empty(shape)
+    p[...] = 1.0 if p_init is None else b.asarray(p_init)
+    xp.maximum(p, 0.0, out=p)
+    p *= col(W / (bsum(p) * cell_area))
+    u = xp.empty(shape)
+    conv(p, out=u)
     nconv = 1
-    t = xp.zeros_like(p)
+    t = xp.zeros(shape)
+    p_old = xp.empty(shape)
+    gap = xp.empty(shape)
+    gm = xp.empty(shape)
+    m = xp.empty(shape)
+    r_raw = xp.empty(shape)
+    z = xp.empty(shape) if precondition else gm
+    tmp = xp.empty(shape)
+    mask = xp.empty(shape, dtype=bool)
+    mask2 = xp.empty(shape, dtype=bool)
+    cell_tmp = np.empty((ny, nx)) if b.name == "numpy" else None
+    if cell_tmp is not None:
+        conv.prepare_cells()
+    max_cells = MAX_DIRECT_CELLS
     G_old = xp.ones(B)
     restart = xp.ones(B, dtype=bool)
     done = xp.zeros(B, dtype=bool)
     iters = xp.zeros(B, dtype=int)
     eps = xp.full(B, np.inf)
     for it in range(1, max_iter + 1):
-        gap = u + g0
-        m = (p > 0).astype(gap.dtype)
+        if callback is not None:
+            callback(it)
+        xp.add(u, g0, out=gap)
+        xp.greater(p, 0.0, out=mask)
+        m[...] = mask
         n_in = bsum(m)
         gap -= col(bdot(gap, m) / n_in)
-        gm = gap * m
+        xp.multiply(gap, m, out=gm)
         if precondition:
-            z = conv.precondition(gm)
+            conv.precondition(gm, out=z)
             nconv += 1
             z *= m
             z -= col(bdot(z, m) / n_in)
             z *= m
             G = bdot(gm, z)
         else:
-            z = gm
             G = bdot(gm, gap)
         beta = xp.where(restart, 0.0, G / xp.where(G_old == 0, 1.0, G_old))
         t *= col(beta)
         t *= m
         t += z
         G_old = G
-        r_raw = conv(t)
+        conv(t, out=r_raw)
         nconv += 1
         rt = bdot(r_raw, t) - bdot(r_raw, m) / n_in * bsum(t)
         tau = bdot(gm, t) / xp.where(rt == 0, 1.0, rt)
         tau = xp.where(done, 0.0, tau)
-        p_old = p
-        p = p - col(tau) * t
-        changed = bool(xp.any(p < 0))
+        p_old[...] = p
+        # p <- p - tau t, then projections: clip negative pressures, re-activate overlaps
+        xp.multiply(t, col(tau), out=tmp)
+        p -= tmp
+        pre = gm  # gm is free until the next iteration: keep p before the projections
+        pre[...] = p
+        xp.less(p, 0.0, out=mask)
+        changed = bool(mask.any())
         xp.maximum(p, 0.0, out=p)
-        overlap = (gap < 0) & (p == 0)
-        restart = bsum(overlap) > 0
-        if bool(xp.any(restart)):
+        xp.less(gap, 0.0, out=mask)
+        xp.equal(p, 0.0, out=mask2)
+        mask &= mask2
+        restart = mask.any(axis=ax)
+        if bool(restart.any()):
             changed = True
-            p = xp.where(overlap, p - col(tau) * gap, p)
+            xp.multiply(gap, col(tau), out=tmp)
+            if b.name == "numpy":
+                xp.subtract(p, tmp, out=p, where=mask)
+            else:
+                p[...] = xp.where(mask, p - tmp, p)
         scale = W / (bsum(p) * cell_area)
+        u_stepped = False
+        if changed and it % REFRESH != 0 and cell_tmp is not None:
+            # the projections changed a few cells by c: u <- s (u - tau K t + K c), K c summed
+            # directly (cheaper than a transform pair for a few cells)
+            xp.not_equal(p, pre, out=mask)
+            tmp[...] = mask  # counted in floats: a bool -> int sum allocates a cast buffer
+            if int(bsum(tmp).max()) <= max_cells:
+                xp.multiply(r_raw, col(tau), out=tmp)
+                u -= tmp
+                for k in range(B):
+                    iy, ix = np.nonzero(mask[k])
+                    if iy.size:
+                        conv.add_cells(u, k, iy, ix, p[k, iy, ix] - pre[k, iy, ix], cell_tmp)
+                changed, u_stepped = False, True
         p *= col(scale)
         if changed or it % REFRESH == 0:
-            u = conv(p)
+            conv(p, out=u)
             nconv += 1
         else:
-            u -= col(tau) * r_raw
+            if not u_stepped:
+                xp.multiply(r_raw, col(tau), out=tmp)
+                u -= tmp
             u *= col(scale)
-        eps = bsum(xp.abs(p - p_old)) * cell_area / W
+        xp.subtract(p, p_old, out=tmp)
+        xp.abs(tmp, out=tmp)
+        eps = bsum(tmp) * cell_area / W
         newly = (eps < tol) & ~done
         iters = xp.where(newly, it, iters)
         done = done | newly
