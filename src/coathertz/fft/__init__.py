@@ -4,8 +4,6 @@ Public API
 ----------
 :class:`~coathertz.fft.method.FFTMethod`
     ``FFTMethod(n=128, ...).solve(case) -> ContactResult``; ``.solve_many(cases)`` for sweeps.
-:func:`~coathertz.fft.method.solve_many`
-    Convenience wrapper.
 :mod:`~coathertz.fft.frf`, :mod:`~coathertz.fft.influence`, :mod:`~coathertz.fft.grid`,
 :mod:`~coathertz.fft.solver`, :mod:`~coathertz.fft.estimators`
     The building blocks (FRF of eq 13 and the transfer matrix, cell coefficients, grids,

@@ -24,7 +24,7 @@ import dataclasses
 import math
 import time
 from collections import OrderedDict
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import asdict, dataclass
 from typing import Any
 
@@ -381,11 +381,3 @@ def prolong(pc: np.ndarray, coarse: Grid, fine: Grid) -> np.ndarray:
     iy, wy = weights(fine.y, coarse.y)
     rows = pc[:, ix] * (1 - wx) + pc[:, ix + 1] * wx
     return rows[iy, :] * (1 - wy)[:, None] + rows[iy + 1, :] * wy[:, None]
-
-
-def solve_many(
-    cases: Iterable[ContactCase], method: FFTMethod | None = None, **settings: Any
-) -> list[ContactResult]:
-    """Convenience: ``(method or FFTMethod(**settings)).solve_many(list(cases))``."""
-    m = method or FFTMethod(**settings)
-    return m.solve_many(list(cases))
