@@ -4,7 +4,9 @@ Every claim of a study is computed from :attr:`StudyResult.errors` (the closed f
 each case's reference: the top-ranked method that solved it). Its uncertainty is the spread
 between the methods that solved the same cases (:attr:`StudyResult.uncertainty`, the largest
 |cross-check difference|): over the claim's own cases where any was cross-checked, else over
-the study's cross-checked cases (said so in the detail), else not estimated.
+the study's cross-checked cases (said so in the detail), else not estimated. A cross-check is
+another numerical method on the same case, or the reference itself at refined settings on the
+cases a study marks ``refine`` (a grid convergence estimate, ``<method>-refined``).
 """
 
 from __future__ import annotations
@@ -65,11 +67,12 @@ def uncertainty_for(result: StudyResult, cases: Iterable[str], quantities: Seque
 
     u, n = spread(cases)
     if n:
-        return u, f"spread of the methods on {plural(n, 'cross-checked case')} of this set"
+        return u, f"largest cross-check difference on {plural(n, 'cross-checked case')} of this set"
     u, n = spread(result.uncertainty)
     if n:
-        return u, f"spread of the methods on the study's {plural(n, 'cross-checked case')} (none in this set)"
-    return math.nan, "not estimated (no case solved by two numerical methods)"
+        return u, (f"largest cross-check difference on the study's {plural(n, 'cross-checked case')} "
+                   "(none in this set)")
+    return math.nan, "not estimated (no case cross-checked by another method or a refined grid)"
 
 
 def bound_claim(cid: str, text: str, result: StudyResult, bound: float,
@@ -85,7 +88,7 @@ def bound_claim(cid: str, text: str, result: StudyResult, bound: float,
     if worst is None:
         return Claim(cid, text, math.nan, f"< {bound:g} %", None, "%", tol, "no case in this set",
                      judged_against=on)
-    u, src = uncertainty_for(result, ids, quantities)
+    u, src = uncertainty_for(result, ids, (worst["quantity"],))  # of the quantity that decides
     holds, inconclusive = judge("<", value, bound, u)
     keys = [k for k in ("E", "H", "nu_c", "Ec_GPa", "example") if k in worst]
     detail = (f"{plural(n, 'case')}; worst: {worst['quantity']} at "

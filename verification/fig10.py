@@ -64,9 +64,11 @@ def cases(resolution: str) -> list[C.StudyCase]:
         for E in Es:
             for H in Hs:
                 cid = f"E={E:g},H={H:.4g}" + ("" if ind == "rigid" else ",elastic")
+                refine = resolution != "tiny" and E in (min(Es), max(Es)) and H in (Hs[len(Hs) // 3],
+                                                                                  Hs[2 * len(Hs) // 3])
                 out.append(C.StudyCase(cid, elliptical_case(E, float(H), cid, ind),
                                        {"E": float(E), "H": float(H), "nu_c": C.NU, "nu_s": C.NU,
-                                        "indenter": ind}))
+                                        "indenter": ind}, refine=bool(refine)))
     return out
 
 

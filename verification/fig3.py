@@ -62,9 +62,11 @@ def cases(resolution: str) -> list[C.StudyCase]:
     for E in Es:
         for H in Hs:
             tier = "expensive" if (round(E, 9), round(float(H), 9)) in fem else "moderate"
+            refine = resolution != "tiny" and E in (min(Es), max(Es)) and H in (Hs[0], Hs[len(Hs) // 2])
             cid = f"E={E:.4g},H={H:.4g}"
             out.append(C.StudyCase(cid, C.elastic_case(E, float(H), label=cid),
-                                   {"E": float(E), "H": float(H), "nu_c": C.NU, "nu_s": C.NU}, tier))
+                                   {"E": float(E), "H": float(H), "nu_c": C.NU, "nu_s": C.NU}, tier,
+                                   refine=bool(refine)))
     return out
 
 

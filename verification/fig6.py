@@ -64,15 +64,15 @@ def analyse(result: C.StudyResult) -> None:
             continue
         errs = [r["err12"] for r in sel]
         mn, mx = float(np.min(errs)), float(np.max(errs))
-        worst = mx if abs(mx) >= abs(mn) else mn
+        worst = mn if (mn - lo) < (hi - mx) else mx  # the extreme nearest to (or beyond) its bound
         ids = {r["case"] for r in sel}
         u, src = C.uncertainty_for(result, ids, ("a",))
         holds, inconclusive = C.judge("within", worst, (lo, hi), u, (mn, mx))
         label = "Ec* > Es*" if side == "stiff" else "Ec* < Es*"
         result.claims.append(C.Claim(
             f"fig6-eq12-{side}", f"eq (12) error for {label} over the {C.plural(len(sel), 'fig-3 case')} "
-            "with that E (largest)", worst, f"within [{lo:g}, {hi:g}] %", holds, "%", 0.05,
-            f"range [{mn:.2f}, {mx:.2f}] %; uncertainty of a: {src}", u, inconclusive,
+            "with that E (the extreme nearest its bound)", worst, f"within [{lo:g}, {hi:g}] %", holds, "%",
+            0.05, f"range [{mn:.2f}, {mx:.2f}] %; uncertainty of a: {src}", u, inconclusive,
             C.judged_on(result, ids)))
     sel = [r for r in ref if TAU_BAND[0] <= r["tau_star"] <= TAU_BAND[1]]
     if len(sel) > 2:

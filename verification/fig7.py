@@ -66,8 +66,10 @@ def cases(resolution: str) -> list[C.StudyCase]:
             tier = "expensive" if (nu, round(float(H), 9)) in fem else "moderate"
             variants = {FRICTIONLESS} if nu == 0.5 else set()
             cid = f"nu_c={nu:g},H={H:.4g}"
+            refine = resolution != "tiny" and nu == 0.5 and H in (Hs[0], Hs[len(Hs) // 2], Hs[-1])
             out.append(C.StudyCase(cid, C.rigid_substrate_case(E_COATING, float(H), nu, cid),
-                                   {"H": float(H), "nu_c": nu, "Ec_GPa": E_COATING / 1e9}, tier, variants))
+                                   {"H": float(H), "nu_c": nu, "Ec_GPa": E_COATING / 1e9}, tier, variants,
+                                   refine=bool(refine)))
     return out
 
 

@@ -52,8 +52,10 @@ def cases(resolution: str) -> list[C.StudyCase]:
         for H in Hs:
             tier = "expensive" if (Ec == ec_fem and round(float(H), 9) in fem) else "moderate"
             cid = f"Ec={Ec / 1e9:g}GPa,H={H:.4g}"
+            refine = resolution != "tiny" and Ec == ec_fem and H in (Hs[0], Hs[len(Hs) // 2])
             out.append(C.StudyCase(cid, C.rigid_substrate_case(Ec, float(H), C.NU, cid),
-                                   {"Ec_GPa": Ec / 1e9, "H": float(H), "nu_c": C.NU}, tier))
+                                   {"Ec_GPa": Ec / 1e9, "H": float(H), "nu_c": C.NU}, tier,
+                                   refine=bool(refine)))
     return out
 
 

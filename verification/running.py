@@ -80,6 +80,40 @@ def plan(cases: Sequence[Any], methods: Mapping[str, Any], variants: Mapping[str
     return todo, absent
 
 
+#: Suffix of the rows of a reference solved again at refined settings (convergence estimate).
+REFINED = "-refined"
+
+
+def _refine(cases: Sequence[Any], reference: Mapping[str, str], resolution: str, store: ResultStore,
+            opts: Mapping[str, Any]) -> tuple[dict[str, dict[str, dict]], int, int]:
+    """Solve the cases marked ``refine`` with their reference at its ``refined_settings``;
+    ``{case id: {"<method>-refined": result}}``, and how many were computed and reused."""
+    from coathertz.methods import method_class
+    from coathertz.runner import Task, run_tasks
+
+    todo = []
+    for sc in cases:
+        ref = reference.get(sc.id)
+        if not sc.refine or ref is None:
+            continue
+        fn = getattr(method_class(ref), "refined_settings", None)
+        settings = fn(resolution) if fn is not None else None
+        if settings is None:
+            continue
+        todo.append((sc, ref, get_method(ref, **settings)))
+    if not todo:
+        return {}, 0, 0
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        outcome = run_tasks([Task(sc.case, m) for sc, _, m in todo], store, **opts)
+    out: dict[str, dict[str, dict]] = {}
+    for sc, ref, m in todo:
+        sr = outcome.get(sc.case, m)
+        if sr is not None and sr.ok:
+            out[sc.id] = {f"{ref}{REFINED}": sr.result}
+    return out, outcome.computed + outcome.failed, outcome.reused
+
+
 def run_study(module, resolution: str, methods: Mapping[str, Any], store: ResultStore,
               runner_options: Mapping[str, Any] | None = None) -> StudyResult:
     """Build, run and analyse one study module with the given (registered) method instances."""
@@ -119,9 +153,18 @@ def run_study(module, resolution: str, methods: Mapping[str, Any], store: Result
             result.reference[cid] = ref
     result.errors = make_errors(result.rows, result.reference, quantities, predicted)
     result.crosscheck = crosscheck(result.rows, result.reference, numerical, quantities)
+    refined, n_new, n_old = _refine(cases, result.reference, resolution, store, opts)
+    if refined:
+        rows = result.rows + make_rows(cases, refined)
+        finer = {f"{r}{REFINED}" for r in result.reference.values()}
+        result.crosscheck += [d for d in crosscheck(rows, result.reference, finer, quantities)
+                              if d["method"] in finer]
+        result.extra["refined"] = {cid: next(iter(v)) for cid, v in refined.items()}
     result.uncertainty = uncertainty_by_case(result.crosscheck)
     result.failures = failures
     result.computed, result.reused = outcome.computed + outcome.failed, outcome.reused
+    result.computed += n_new
+    result.reused += n_old
     result.method_time = dict(outcome.method_time)
     n_cases = len(cases)
     for name in methods:

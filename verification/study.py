@@ -47,6 +47,10 @@ class StudyCase:
         tier admits runs it. A study marks the subset worth an expensive method.
     variants
         Names of study-declared method variants (module ``VARIANTS``) that run this case too.
+    refine
+        Also solve this case with its reference method at refined settings (the method's optional
+        ``refined_settings(resolution)``): a convergence estimate of the reference where no other
+        method cross-checks it.
     """
 
     id: str
@@ -54,6 +58,7 @@ class StudyCase:
     params: Mapping[str, Any]
     tier: str = "moderate"
     variants: frozenset[str] = frozenset()
+    refine: bool = False
 
     def __post_init__(self) -> None:
         if self.tier not in COSTS:

@@ -122,6 +122,11 @@ class FFTMethod:
         the parallelism), no fields kept."""
         return {"n": 32 if resolution == "tiny" else 128, "keep_fields": False, "workers": 1}
 
+    @classmethod
+    def refined_settings(cls, resolution: str) -> dict[str, Any]:
+        """Twice the grid (convergence estimate of a study's reference)."""
+        return {**cls.settings_for(resolution), "n": 2 * cls.settings_for(resolution)["n"]}
+
 
     n: int = DEFAULT_N
     margin: float = DEFAULT_MARGIN
