@@ -108,13 +108,17 @@ def crosscheck(rows: Sequence[dict], reference: Mapping[str, str], numerical: It
 
 
 def uncertainty_by_case(checks: Iterable[Mapping[str, Any]]) -> dict[str, dict[str, float]]:
-    """Case id -> quantity -> largest |cross-check difference| (percent): the spread between the
-    methods that solved the case, our estimate of the reference's numerical uncertainty there."""
-    out: dict[str, dict[str, float]] = {}
+    """Case id -> quantity -> our estimate of the reference's numerical uncertainty there (percent):
+    the difference from the reference solved again at refined settings (``<method>-refined``, a
+    convergence estimate) where the case has one; else the largest |difference| from the other
+    methods that solved it (their spread: conservative where the reference is the more accurate)."""
+    refined: dict[str, dict[str, float]] = {}
+    spread: dict[str, dict[str, float]] = {}
     for d in checks:
-        q = out.setdefault(d["case"], {})
+        into = refined if d["method"].endswith("-refined") else spread
+        q = into.setdefault(d["case"], {})
         q[d["quantity"]] = max(q.get(d["quantity"], 0.0), abs(d["diff"]))
-    return out
+    return {**spread, **refined}
 
 
 def crosscheck_summary(checks: Sequence[Mapping[str, Any]]) -> list[dict]:

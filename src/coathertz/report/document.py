@@ -36,7 +36,8 @@ def _num(v: float, unit: str) -> str:
 
 def _unc(c: Any) -> str:
     u = getattr(c, "uncertainty", math.nan)
-    if (c.holds is None or not getattr(c, "judged_against", "")) and not math.isfinite(u):
+    judged = getattr(c, "judged_against", "")
+    if (c.holds is None or not judged or judged.endswith("itself")) and not math.isfinite(u):
         return ""
     return "not estimated" if not math.isfinite(u) else f"± {u:.2g}{' ' + c.unit if c.unit else ''}"
 
