@@ -12,6 +12,11 @@ if str(HERE) not in sys.path:
     sys.path.insert(0, str(HERE))
 
 
+def pytest_configure(config):
+    config.addinivalue_line("markers", "browser: needs a headless Chromium (skipped, with the reason, "
+                            "without one)")
+
+
 @pytest.fixture(scope="session")
 def tiny_methods():
     """Closed form and a coarse FFT (n = 32): what the tiny studies run in the tests."""

@@ -142,7 +142,7 @@ CSS = """
 body { font-family: system-ui, sans-serif; max-width: 1250px; margin: 1em auto; padding: 0 1em; color: #222; }
 table { border-collapse: collapse; margin: 0.6em 0; font-size: 0.86em; display: block; max-width: 100%;
         overflow-x: auto; }
-td { overflow-wrap: anywhere; }
+td { overflow-wrap: break-word; }
 th, td { border: 1px solid #bbb; padding: 3px 6px; vertical-align: top; }
 th { background: #f0f0f0; }
 img { max-width: 100%; display: block; margin: 0.5em 0; }
