@@ -26,7 +26,7 @@ from coathertz.extended import predict_bar
 from . import fig4
 
 NAME = "fig8_9"
-TITLE = "Figures 8 and 9: rigid substrate, 13 coating moduli; collapse and alpha"
+TITLE = "Figures 8 and 9: rigid substrate, coating moduli from 50 to 800 GPa; collapse and alpha"
 CLAIM = ("Bars are independent of Ec; the rigid-substrate alpha curves predict every case within 1 % "
          "(Section 4).")
 BOUND = 1.0
