@@ -158,7 +158,7 @@ def analyse(result: C.StudyResult) -> None:
 
 def plot(result: C.StudyResult, outdir) -> list:
     rows = result.extra.get("literature", [])
-    fig, axes = C.figure(1, width=6.4, height=4.4)
+    fig, axes = C.figure(1, width=6.0, height=4.4)
     ax = axes[0, 0]
     cols = {0.3: "tab:blue", 0.4: "tab:green", 0.5: "tab:red"}
     pts = sorted((r["tau"], r["a_bar"]) for r in rows if r["method"] == FRICTIONLESS)
@@ -191,7 +191,7 @@ def plot(result: C.StudyResult, outdir) -> list:
     ax.set_ylabel(r"$\bar a = a_{num}/a_{0c}$")
     ax.set_ylim(0, 1.1)
     ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=6.5, loc="lower right")
+    ax.legend(fontsize=6.5, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     ax.set_title("Fig. 7: rigid substrate, rigid sphere (dotted line: tau = 0.2)", fontsize=10)
     fig.tight_layout()
     return C.save(fig, outdir, "fig7")

@@ -67,11 +67,11 @@ def plan(cases: Sequence[Any], methods: Mapping[str, Any], variants: Mapping[str
     for sc in cases:
         for name, m in methods.items():
             info = method_info(name)
-            if not admits(sc.tier, info.cost):
-                absent.setdefault(sc.id, {})[name] = (f"{info.cost} method; the study runs it on a subset "
-                                                      f"only (this case: {sc.tier} tier)")
-            elif not m.supports(sc.case):
+            if not m.supports(sc.case):
                 absent.setdefault(sc.id, {})[name] = "does not support this configuration"
+            elif not admits(sc.tier, info.cost):
+                absent.setdefault(sc.id, {})[name] = (f"{info.cost} method, run on the study's chosen subset "
+                                                      "only")
             else:
                 todo.append((sc, name, m))
         for v in sorted(sc.variants):
@@ -176,7 +176,7 @@ def run_study(module, resolution: str, methods: Mapping[str, Any], store: Result
                 if why:
                     reasons[why] = reasons.get(why, 0) + 1
             result.skipped[name] = f"runs {n_run} of {n_cases} cases; " + "; ".join(
-                f"{k}: {v}" for k, v in sorted(reasons.items(), key=lambda kv: -kv[1]))
+                f"not on {v}: {k}" for k, v in sorted(reasons.items(), key=lambda kv: -kv[1]))
     result.extra["notes"] = vnotes
     result.extra["absent"] = absent
     result.extra["cases"] = {sc.id: {"params": dict(sc.params), "case_key": case_key(sc.case),
