@@ -13,9 +13,11 @@ the coating's, :math:`\bar a \to E^{-1/3}, \bar p \to E^{2/3}, \bar\delta \to E^
 effect of the assumption NOTES.md makes for the parts missing from eq (19) (rule ``paper``:
 alpha(3) for E >= 1 and alpha(1/3) for E < 1) against the alternative ``eq21-fill``.
 
-Resolutions: ``full`` is the paper's 25 x 101 grid (FFT everywhere, FE on 5 E x 5 H, at the
-grid points nearest H = 0.03, 0.1, 0.3, 1, 3);
-``quick`` 6 E x 12 H (FFT everywhere, FE on 4 cases); ``tiny`` 2 E x 2 H, no FE.
+Resolutions: ``full`` is the paper's 25 x 101 grid (cheap and moderate methods, e.g. exact
+axisym and FFT, everywhere; expensive ones, the FE, on 5 E x 5 H at the grid points nearest
+H = 0.03, 0.1, 0.3, 1, 3); ``quick`` 6 E x 12 H (expensive methods on 4 cases); ``tiny``
+2 E x 2 H, no expensive method. At the quick and full resolutions the reference is also solved at
+refined settings on four cases (E extremes, thinnest and middle H): a convergence estimate.
 """
 
 from __future__ import annotations

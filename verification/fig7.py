@@ -15,9 +15,10 @@ interest; Poisson's ratio has a significant effect, particularly above 0.3. The 
 numbers; we take "agree" as within 2 % and "not accurate" as off by more than 2 %, and report
 the numbers.
 
-Resolutions: ``full`` 3 nu_c x 40 H (FE at every nu_c on 3 H); ``quick`` 3 x 10 (FE on 2
-cases: nu_c = 0.3 at H ~ 0.3, nu_c = 0.5 at H ~ 0.1; a thicker nu_c = 0.5 layer took the FE model
-up to 2 minutes); ``tiny`` 3 x 2. H = h/a0c from 0.03 to 4.
+Resolutions (expensive methods, i.e. the FE, only where named): ``full`` 3 nu_c x 40 H (FE at
+every nu_c on 3 H); ``quick`` 3 x 10 (FE on 2 cases: nu_c = 0.3 at H ~ 0.3, nu_c = 0.5 at H ~
+0.1; a thicker nu_c = 0.5 layer took the FE model up to 2 minutes); ``tiny`` 3 x 2. H = h/a0c
+from 0.03 to 4.
 """
 
 from __future__ import annotations

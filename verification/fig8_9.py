@@ -9,8 +9,8 @@ Paper's claims: the bars are *independent of Ec* and fall on one curve (fig 8); 
 representative alpha curves of figure 9 (Appendix A, rigid substrate) eqs (1), (17), (18)
 predict every case *within 1 %*. We also invert alpha from each numerical result (fig 9).
 
-Resolutions: ``full`` 13 Ec x 101 H (FE at the Ec nearest 200 GPa, 3 H); ``quick`` 3 Ec x 10 H
-(FE at 200 GPa, 2 H); ``tiny`` 2 Ec x 2 H.
+Resolutions (expensive methods, i.e. the FE, only where named): ``full`` 13 Ec x 101 H (FE at
+the Ec nearest 200 GPa, 3 H); ``quick`` 3 Ec x 10 H (FE at 200 GPa, 2 H); ``tiny`` 2 Ec x 2 H.
 """
 
 from __future__ import annotations

@@ -11,7 +11,8 @@ E = 0.25 and :math:`\nu_c = 0.15`.
 The claim is also judged over the cases with nu_c != 0.3 alone (the nu_c = 0.3 cases are
 fig-3 cases: their error is eq (19)'s at nu_c = 0.3, not a Poisson effect).
 
-Resolutions: ``full`` 6 nu_c x 4 E x 101 H (FE on 4 cases); ``quick`` 3 nu_c x 4 E x 8 H (FE on
+Resolutions (expensive methods, i.e. the FE, only where named): ``full`` 6 nu_c x 4 E x 101 H (FE on
+4 cases); ``quick`` 3 nu_c x 4 E x 8 H (FE on
 2 cases); ``tiny`` 2 nu_c x 2 E x 2 H.
 """
 

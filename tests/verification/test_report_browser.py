@@ -83,7 +83,7 @@ def test_fresh_report_in_browser(tmp_path):
     from coathertz.cli import main
 
     out = tmp_path / "fresh"
-    assert main(["verify", "--tiny", "--study", "fig3", "--study", "fig7", "--study", "section6", "--method",
+    assert main(["verify", "--tiny", "--study", "fig3", "--study", "section6", "--method",
                  "closed-form", "--method", "fft", "--no-progress", "--workers", "1", "--out", str(out)]) == 0
     _assert_clean(check_page(out / "index.html", tmp_path))
 
