@@ -140,6 +140,9 @@ def plot(result: C.StudyResult, outdir) -> list:
             col = C.colour(i, len(Es))
             ax.plot(H_line, predict_bar(q, E, H_line, warn=False), color=col, lw=1.2,
                     label=f"E = {E:.3g}" if len(Es) <= 8 else None)
+            alt = predict_bar(q, E, H_line, rule=EQ21_RULE, warn=False)  # the other reading of eq (19)
+            if np.max(np.abs(alt / predict_bar(q, E, H_line, warn=False) - 1)) > 1e-6:
+                ax.plot(H_line, alt, color=col, lw=0.8, ls="--")
             for m in numerical:
                 x, y = C.series(result.rows, m, "E", E, "H", f"{q}_bar")
                 if len(x):
@@ -151,7 +154,8 @@ def plot(result: C.StudyResult, outdir) -> list:
         ax.grid(alpha=0.3, which="both")
     axes[0, 0].legend(handles=C.method_handles(result.methods), fontsize=7, loc="best")
     if len(Es) <= 8:
-        axes[0, 1].legend(fontsize=7, ncol=2, title="lines: eqs (1), (17)-(19)", title_fontsize=7)
+        axes[0, 1].legend(fontsize=7, ncol=2, title="lines: eqs (1), (17)-(19); dashed: 'eq21-fill' reading",
+                          title_fontsize=7)
     fig.suptitle("Fig. 3: rigid sphere on a coated elastic half-space, $\\nu_c = \\nu_s = 0.3$", fontsize=10)
     fig.tight_layout()
     return C.save(fig, outdir, "fig3")
