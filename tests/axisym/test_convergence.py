@@ -1,5 +1,7 @@
 """Self-convergence of delta, a and p0 with the quadrature sizes: Legendre modes N (the Galerkin
-basis) and Gauss nodes per panel of the xi integral; the observed rates are in the messages."""
+basis) and Gauss nodes per panel of the xi integral; the observed rates are in the messages.
+The reference (120 modes, 12 nodes per panel, cut-off 24 a/h) is converged to ~1e-10 (see the
+package docstring for the table up to 160 modes)."""
 
 from __future__ import annotations
 
@@ -16,11 +18,12 @@ CASES = {
     "rigid base, nu_c=0.5, H=0.05": coated(0.0, 0.05, nu_c=0.5, substrate=RIGID),
 }
 QS = ("delta", "a", "p0")
+FINE_XI = dict(order=12, panel=3.0, decay=24.0, keep_fields=False)
 
 
 @pytest.fixture(scope="module")
 def references():
-    return {k: AxisymMethod(n_modes=160, order=20, decay=30.0).solve(c) for k, c in CASES.items()}
+    return {k: AxisymMethod(n_modes=120, **FINE_XI).solve(c) for k, c in CASES.items()}
 
 
 @pytest.mark.parametrize("name", list(CASES))
@@ -30,14 +33,13 @@ def test_modes_convergence(name, references):
     case, ref = CASES[name], references[name]
     Ns = [8, 16, 24, 32]
     for q in QS:
-        errs = np.array([abs(getattr(AxisymMethod(n_modes=n).solve(case), q) / getattr(ref, q) - 1)
-                         for n in Ns])
+        errs = np.array([abs(getattr(AxisymMethod(n_modes=n, **FINE_XI).solve(case), q)
+                             / getattr(ref, q) - 1) for n in Ns])
         errs = np.maximum(errs, 1e-16)
-        rate = np.polyfit(Ns, np.log10(errs), 1)[0]
+        above = errs > 1e-12  # points not yet at round-off
+        rate = np.polyfit(np.array(Ns)[above], np.log10(errs[above]), 1)[0] if above.sum() >= 2 else -np.inf
         msg = f"{name}, {q}: errors {errs} at N = {Ns}; observed rate {rate:.3f} decades per mode"
-        assert errs[-1] < 1e-5, msg
-        if errs[0] > 1e-12:  # not yet at round-off at the coarsest N
-            assert rate < -0.1, msg
+        assert errs[-1] < 1e-5 and rate < -0.1, msg
     r = AxisymMethod().solve(case)
     for q in QS:
         assert abs(getattr(r, q) / getattr(ref, q) - 1) < 1e-8, (name, q, r.meta["n_modes"])
@@ -48,10 +50,10 @@ def test_xi_quadrature_convergence(name, references):
     """Gauss nodes per panel of the xi rule: spectral convergence, observed decades per node."""
     case, ref = CASES[name], references[name]
     orders = [4, 5, 6, 7]
-    n = references[name].meta["n_modes"]
+    n = AxisymMethod(keep_fields=False).solve(case).meta["n_modes"]
     for q in QS:
-        errs = np.array([abs(getattr(AxisymMethod(n_modes=n, order=o).solve(case), q) / getattr(ref, q) - 1)
-                         for o in orders])
+        errs = np.array([abs(getattr(AxisymMethod(n_modes=n, order=o, keep_fields=False).solve(case), q)
+                             / getattr(ref, q) - 1) for o in orders])
         errs = np.maximum(errs, 1e-16)
         rate = np.polyfit(orders, np.log10(errs), 1)[0]
         msg = f"{name}, {q}: errors {errs} at order = {orders}; observed rate {rate:.2f} decades per node"

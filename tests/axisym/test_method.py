@@ -106,3 +106,18 @@ def test_agrees_with_fft_small():
     assert abs(f.delta / a.delta - 1) < 3e-4
     assert abs(f.p0 / a.p0 - 1) < 3e-4
     assert math.isfinite(a.meta["r_p0"])
+
+
+def test_protocol_and_body_symmetry():
+    """The Method protocol; swapping the two bodies (different coatings on each) changes nothing."""
+    from coathertz.materials import Coating, Material
+    from coathertz.methods import Method
+
+    m = AxisymMethod()
+    assert isinstance(m, Method)
+    b1 = Body.sphere(STEEL, 20e-3, Coating(Material(400e9, 0.25), 5e-6))
+    b2 = Body.sphere(Material(100e9, 0.35), 30e-3, Coating(Material(50e9, 0.45), 12e-6))
+    r12 = m.solve(ContactCase(b1, b2, 2.0))
+    r21 = m.solve(ContactCase(b2, b1, 2.0))
+    for q in ("delta", "a", "p0"):
+        assert getattr(r12, q) == pytest.approx(getattr(r21, q), rel=1e-13)

@@ -103,17 +103,35 @@ def layer_factor_bonded(coating: Material, substrate: Material) -> LayerFactor:
 def layer_factor_frictionless(coating: Material, substrate: Material) -> LayerFactor:
     """``F(t)`` of a coating resting on ``substrate`` without friction (rigid allowed).
 
-    Rigid substrate: ``F = (cosh 2t - 1) / (sinh 2t + 2t)`` (module docstring).
+    Derivation (plane strain along ``k``, ``k = 1``, Papkovich--Neuber potentials
+    ``phi = (A e^{-z} + C e^{z}) cos x``, ``psi = (B e^{-z} + D e^{z}) cos x`` in the layer): with
+    both faces free of shear and normal pressures ``P`` (top) and ``q`` (interface), the layer's
+    surface displacements in units of ``2/E_c*`` are ``u(0) = a11 P + a12 q``,
+    ``u(t) = -a12 P - a11 q`` with ``a11 = (s c + t)/(s^2 - t^2)``,
+    ``|a12| = (t c + s)/(s^2 - t^2)``, ``s = sinh t``, ``c = cosh t`` (a free plate: both blow up
+    like ``6/t^3`` as ``t -> 0``). The substrate gives ``u(t) = r q`` with
+    ``r = E_c*/E_s*`` (``0``: rigid). Eliminating ``q`` and using
+    ``a11^2 - a12^2 = s^2/(s^2 - t^2)``:
+
+    .. math::  F(t) = \frac{r (s c + t) + s^2}{r (s^2 - t^2) + s c + t},
+
+    ``F(0) = r`` (eq 14), ``F(inf) = 1`` (eq 15); ``r = 0`` gives ``(cosh 2t - 1)/(sinh 2t + 2t)``.
+    ``nu_c`` and ``nu_s`` enter only through ``E_c*`` and ``E_s*``. Evaluated as
+    ``[r (1 - th^2 + 4 t th) + (1 - th)^2] / [r ((1 - th)^2 - 4 t^2 th) + 1 - th^2 + 4 t th]``
+    with ``th = exp(-2t)`` (numerator and denominator times ``4 e^{-2t}``).
     """
-    if substrate.is_rigid:
+    r = 0.0 if substrate.is_rigid else coating.E_star / substrate.E_star
 
-        def F_rigid(t: np.ndarray) -> np.ndarray:
-            th = np.exp(-2.0 * t)
-            # times 2 e^{-2t}: cosh 2t - 1 -> (1 - th)^2, sinh 2t + 2t -> 1 - th^2 + 4 t th
-            return (1.0 - th) ** 2 / (1.0 - th * th + 4.0 * t * th)
+    def F(t: np.ndarray) -> np.ndarray:
+        t = np.asarray(t, dtype=float)
+        th = np.exp(-2.0 * t)
+        sc = 1.0 - th * th + 4.0 * t * th  # 4 e^{-2t} (sinh t cosh t + t)
+        s2 = (1.0 - th) ** 2  # 4 e^{-2t} sinh^2 t
+        with np.errstate(invalid="ignore", divide="ignore"):
+            out = (r * sc + s2) / (r * (s2 - 4.0 * t * t * th) + sc)
+        return np.where(t > 1e-12, out, r)
 
-        return F_rigid
-    raise CoatHertzError("axisym: frictionless interface on an elastic substrate is not implemented yet")
+    return F
 
 
 def body_layer_factor(body: Body, interface: str) -> LayerFactor | None:

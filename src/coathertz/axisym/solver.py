@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 
 import numpy as np
+from numpy.polynomial import chebyshev as npcheb
 from numpy.polynomial import legendre as npleg
 from scipy.linalg import lu_factor, lu_solve
 
@@ -154,6 +155,20 @@ def initial_radius(pc: PairCompliance, R: float, W: float) -> float:
     return a
 
 
+def _model_slope(pc: PairCompliance, R: float, a: float) -> float:
+    """``d log W / d log a`` of the model ``W = 4 E_ref a^3 / (3 R (1 + M(1.2/a)))`` (3 for Hertz,
+    up to 6 for incompressible thin layers): the first secant step."""
+    eps = 1e-3
+
+    def logW(x: float) -> float:
+        a_ = math.exp(x)
+        return 3.0 * x - math.log(1.0 + float(pc.M(np.array([1.2 / a_]))[0]))
+
+    x = math.log(a)
+    s = (logW(x + eps) - logW(x - eps)) / (2.0 * eps)
+    return s if 1.0 < s < 10.0 else 3.0
+
+
 def solve_load(
     pc: PairCompliance,
     R: float,
@@ -163,17 +178,19 @@ def solve_load(
     decay: float = 24.0,
     rtol: float = 1e-12,
     max_iter: int = 40,
+    a_start: float | None = None,
 ) -> tuple[RadiusSolution, int]:
-    """Find ``a`` with ``W(a) = W`` (secant in ``log a`` on ``log W``, bracketed)."""
+    """Find ``a`` with ``W(a) = W`` (secant in ``log a`` on ``log W``, bracketed), starting from
+    ``a_start`` (default :func:`initial_radius`)."""
     target = math.log(W)
-    x0 = math.log(initial_radius(pc, R, W))
+    x0 = math.log(initial_radius(pc, R, W) if a_start is None else a_start)
 
     def f(x: float) -> tuple[float, RadiusSolution]:
         s = solve_at_radius(pc, R, math.exp(x), n_modes, rule, decay)
         return math.log(s.W) - target, s
 
     f0, _ = f(x0)
-    x1 = x0 - f0 / 3.0  # W ~ a^3
+    x1 = x0 - f0 / _model_slope(pc, R, math.exp(x0))
     f1, s1 = f(x1)
     lo = hi = None
     for it in range(2, max_iter):
@@ -214,50 +231,81 @@ def _gprime_over_x(c: np.ndarray, x: np.ndarray) -> np.ndarray:
     return npleg.legval(x, npleg.legder(full)) / x
 
 
-def pressure(pc: PairCompliance, sol: RadiusSolution, rho: np.ndarray) -> np.ndarray:
-    """``p(r = rho a)`` [Pa], ``0 <= rho <= 1``:
-    ``p = -(E_ref / (pi a)) sqrt(1 - rho^2) int_0^1 g'(x)/x ds``, ``x^2 = rho^2 + (1 - rho^2) s^2``
-    (exact Gauss rule: the integrand is a polynomial of degree ``4 N - 4`` in ``s``)."""
-    rho = np.atleast_1d(np.asarray(rho, dtype=float))
-    s, ws = _half_gauss(sol.c.size + 2)
+def _abel_integral(c: np.ndarray, rho: np.ndarray) -> np.ndarray:
+    """``-int_0^1 g'(x)/x ds`` with ``x^2 = rho^2 + (1 - rho^2) s^2`` (exact Gauss rule: the
+    integrand is a polynomial of degree ``4 N - 4`` in ``s``)."""
+    s, ws = _half_gauss(c.size + 2)
     r2 = rho[:, None] ** 2
     x = np.sqrt(r2 + (1.0 - r2) * s[None, :] ** 2)
-    integ = _gprime_over_x(sol.c, x) @ ws
-    return -(pc.E_ref / (math.pi * sol.a)) * np.sqrt(np.clip(1.0 - rho**2, 0.0, None)) * integ
+    return -(_gprime_over_x(c, x) @ ws)
+
+
+def pressure_shape(sol: RadiusSolution) -> np.ndarray:
+    """Chebyshev coefficients (in ``v = 2 rho^2 - 1``) of ``Q = -int_0^1 g'(x)/x ds``.
+
+    ``p(rho) = E_ref / (pi a) sqrt(1 - rho^2) Q(rho^2)`` and ``Q`` is a polynomial of degree
+    ``N - 2`` in ``rho^2``, so interpolation at ``N + 1`` Chebyshev points is exact; evaluating
+    it costs ``O(N)`` per point instead of ``O(N^2)``.
+    """
+    deg = sol.c.size
+
+    def Q(v: np.ndarray) -> np.ndarray:
+        return _abel_integral(sol.c, np.sqrt(np.clip(0.5 * (v + 1.0), 0.0, 1.0)))
+
+    return npcheb.chebinterpolate(Q, deg)
+
+
+def pressure(pc: PairCompliance, sol: RadiusSolution, rho: np.ndarray,
+             shape: np.ndarray | None = None) -> np.ndarray:
+    """``p(r = rho a)`` [Pa], ``0 <= rho <= 1``:
+    ``p = (E_ref / (pi a)) sqrt(1 - rho^2) Q(rho^2)``, ``Q = -int_0^1 g'(x)/x ds``,
+    ``x^2 = rho^2 + (1 - rho^2) s^2`` (the Abel inversion of ``theta = E_ref g / pi``)."""
+    rho = np.atleast_1d(np.asarray(rho, dtype=float))
+    if shape is None:
+        shape = pressure_shape(sol)
+    q = npcheb.chebval(2.0 * rho**2 - 1.0, shape)
+    return (pc.E_ref / (math.pi * sol.a)) * np.sqrt(np.clip(1.0 - rho**2, 0.0, None)) * q
 
 
 def peak_pressure(pc: PairCompliance, sol: RadiusSolution, n_scan: int = 129) -> tuple[float, float]:
-    """Maximum of ``p(r)`` and its radius ``r_p0`` [m].
+    """Maximum of ``p(r)`` and its radius ``r_p0`` [m] (0.0 on the axis).
 
-    A scan on ``n_scan`` points (clustered at both ends) brackets the maximum; five zooms of
+    A scan on ``n_scan`` points (clustered at both ends) brackets the maximum; six zooms of
     9 points shrink the bracket by 4 each, and a parabola through the best three points gives
-    the peak (``p`` is a smooth function of ``rho``; the value is exact to ~1e-13 relative).
+    the peak (``p`` is smooth in ``rho``; the value is exact to ~1e-13 relative).
     """
+    shape = pressure_shape(sol)
+
+    def pv(r: np.ndarray) -> np.ndarray:
+        return pressure(pc, sol, r, shape)
+
     rho = 0.5 * (1.0 - np.cos(np.linspace(0.0, math.pi, n_scan)))
-    p = pressure(pc, sol, rho)
+    p = pv(rho)
     i = int(np.argmax(p))
     lo, hi = rho[max(i - 1, 0)], rho[min(i + 1, n_scan - 1)]
     best_r, best_p = rho[i], p[i]
     for _ in range(6):
         r = np.linspace(lo, hi, 9)
-        pv = pressure(pc, sol, r)
-        j = int(np.argmax(pv))
-        if pv[j] >= best_p:
-            best_r, best_p = r[j], pv[j]
+        pz = pv(r)
+        j = int(np.argmax(pz))
+        if pz[j] >= best_p:
+            best_r, best_p = r[j], pz[j]
         step = r[1] - r[0]
         lo, hi = max(r[j] - step, 0.0), min(r[j] + step, 1.0)
-    # parabolic vertex through (lo, mid, hi)
-    if 0.0 < best_r < 1.0:
+    if 0.0 < best_r < 1.0:  # parabolic vertex through the best point and its neighbours
         h_ = 0.5 * (hi - lo)
         r3 = np.array([best_r - h_, best_r, best_r + h_])
         if r3[0] >= 0.0 and r3[2] <= 1.0:
-            p3 = pressure(pc, sol, r3)
+            p3 = pv(r3)
             den = p3[0] - 2.0 * p3[1] + p3[2]
             if den < 0:
                 rv = best_r + 0.5 * h_ * (p3[0] - p3[2]) / den
-                pv = pressure(pc, sol, np.array([rv]))[0]
-                if pv > best_p:
-                    best_r, best_p = rv, pv
+                pr = pv(np.array([rv]))[0]
+                if pr > best_p:
+                    best_r, best_p = rv, pr
+    p_axis = float(p[0])
+    if best_p <= p_axis * (1.0 + 1e-12):  # flat top on the axis: the peak is on the axis
+        return max(p_axis, float(best_p)), 0.0
     return float(best_p), float(best_r * sol.a)
 
 

@@ -1,0 +1,56 @@
+"""``coathertz axisym CASE``: exact axisymmetric solution of one (circular) case."""
+
+from __future__ import annotations
+
+import argparse
+
+from coathertz.cli._common import add_case_arguments
+
+NAME = "axisym"
+HELP = "exact axisymmetric solution of one circular case (delta, a, p0 and its radius, profiles)"
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    add_case_arguments(parser)
+    parser.add_argument("--interface", default="bonded", choices=["bonded", "frictionless"],
+                        help="coating/substrate interface (default: bonded, the paper's model)")
+    parser.add_argument("--modes", type=int, default=None, metavar="N",
+                        help="Legendre modes of the Galerkin basis (default: automatic from h/a)")
+    parser.add_argument("--json", action="store_true", help="machine-readable output")
+    parser.add_argument("--save-fields", metavar="OUT.npz",
+                        help="write r, pressure and u_z (combined surface displacement) profiles")
+
+
+def run(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from coathertz.axisym import AxisymMethod
+    from coathertz.cli._common import case_from_args, format_table, list_examples, print_json_or_header
+
+    if args.list_examples:
+        return list_examples()
+    case = case_from_args(args)
+    method = AxisymMethod(interface=args.interface, n_modes=args.modes)
+    res = method.solve(case)
+    if args.save_fields:
+        np.savez_compressed(args.save_fields, **{k: np.asarray(v) for k, v in res.fields.items()})
+    if print_json_or_header(case, res, args.json):
+        return 0
+    norm = case.normalisers
+    m = res.meta
+    print(f"  {args.interface} interface; {m['n_modes']} Legendre modes, {m['n_xi']} xi nodes, "
+          f"{m['iterations']} load iterations, {m['wall_time'] * 1e3:.1f} ms")
+    r_p0 = m["r_p0"]
+    where = "on the axis" if r_p0 == 0.0 else f"at r = {r_p0 * 1e6:.4g} um ({r_p0 / res.a:.3f} a)"
+    rows = [
+        ["delta [um]", f"{res.delta * 1e6:.7g}", f"{res.delta / norm.delta0:.7f}"],
+        ["a [um]", f"{res.a * 1e6:.7g}", f"{res.a / norm.a0:.7f}"],
+        ["p0 [MPa] (maximum)", f"{res.p0 / 1e6:.7g}", f"{res.p0 / norm.p0:.7f}"],
+    ]
+    print(format_table(["", "value", f"/ Hertz ({norm.kind})"], rows))
+    print(f"maximum pressure {where}")
+    if "validity" in m:
+        print(f"warning: {m['validity']}")
+    if args.save_fields:
+        print(f"fields written to {args.save_fields}")
+    return 0
