@@ -133,10 +133,13 @@ def _img(path: Path) -> str:
     return f'<img src="data:image/png;base64,{data}" alt="{html.escape(path.stem)}">'
 
 
-CLAIMS_NOTE = ("Each figure is computed against the case's reference: of the methods that solved a case, the "
-               "one of highest reference rank (named under 'judged against'). Its uncertainty is the spread "
-               "between the methods that solved the same cases. A claim is 'inconclusive (within numerical "
-               "error)' when our number lies within that uncertainty of the paper's bound.")
+CLAIMS_NOTE = ("Each figure is computed against the case's reference: of the methods that solved a case, the"
+               " one of highest reference rank (named under 'judged against'). Its uncertainty is the "
+               'reference solved again at refined settings where a study asks for it and the method offers '
+               'them (a convergence estimate), else the spread between the methods that solved the same '
+               'cases (conservative where the reference is the more accurate method). A claim is '
+               "'inconclusive (within numerical error)' when our number lies within that uncertainty of the "
+               "paper's bound.")
 
 CSS = """
 body { font-family: system-ui, sans-serif; max-width: 1250px; margin: 1em auto; padding: 0 1em; color: #222; }
