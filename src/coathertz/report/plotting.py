@@ -14,16 +14,20 @@ __all__ = ["colour", "figure", "method_handles", "method_style", "save", "series
 
 
 def save(fig, outdir: str | Path, name: str) -> list[Path]:
-    """Save ``fig`` as PNG (150 dpi) and SVG in ``outdir``; close it."""
+    """Save ``fig`` as PNG (150 dpi) and SVG in ``outdir``; close it. Byte-for-byte reproducible:
+    no date in the SVG, fixed SVG ids (a rerun with equal numbers leaves a published report unchanged)."""
+    import matplotlib
     import matplotlib.pyplot as plt
 
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     paths = []
-    for ext in ("png", "svg"):
-        p = outdir / f"{name}.{ext}"
-        fig.savefig(p, dpi=150 if ext == "png" else None, bbox_inches="tight")
-        paths.append(p)
+    with matplotlib.rc_context({"svg.hashsalt": "coathertz"}):
+        for ext in ("png", "svg"):
+            p = outdir / f"{name}.{ext}"
+            fig.savefig(p, dpi=150 if ext == "png" else None, bbox_inches="tight",
+                        metadata={"Date": None} if ext == "svg" else None)
+            paths.append(p)
     plt.close(fig)
     return paths
 
