@@ -164,7 +164,7 @@ def plot(result: C.StudyResult, outdir) -> list:
     names = [t["example"] for t in table]
     sources = ["printed", "closed-form (figure alpha)", "closed-form (Appendix A)"]
     sources += sorted({k for t in table for k in t if k in set(C.method_names()) | {"fft-equiv", "fem-equiv"}
-                       and k != C.CLOSED}, key=lambda m: -C.method_info(m).reference_rank)
+                       and k != C.CLOSED}, key=lambda m: (-C.method_info(m).reference_rank, m))
     palette = ["0.6", "tab:orange", "tab:green", "tab:blue", "tab:red", "tab:purple", "tab:brown", "tab:pink"]
     width = 0.8 / max(len(sources), 1)
     for j, (f, label) in enumerate((("delta", r"$\delta$"), ("a", r"$a$"), ("p0", r"$p_0$"))):
