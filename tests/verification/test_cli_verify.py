@@ -126,3 +126,22 @@ def test_cli_interrupted_midway_then_resumed(tmp_path):
     line = next(x for x in rerun.stdout.splitlines() if x.startswith("fig3"))
     n_refine = sum(sc.refine for sc in get_study("fig3").cases("quick"))  # FFT at 2n, solved after the rest
     assert f"({2 * n_cf - done + n_refine} solved now, {done} reused from the store)" in line
+
+
+def test_verdict_counts_agree_in_number_and_cover_every_class():
+    from coathertz.report.document import verdict_counts
+
+    v = ["holds", "does not hold", "inconclusive (within numerical error)", "observed", "observed", "n/a"]
+    text = verdict_counts(v)
+    assert text == ("1 holds, 1 does not hold, 1 is inconclusive (within numerical error), 2 observations, "
+                    "1 could not be computed (6 claims)")
+    assert verdict_counts(["holds"] * 2 + ["does not hold"] * 18) == "2 hold, 18 do not hold (20 claims)"
+
+
+def test_a_verdict_that_becomes_inconclusive_is_drift():
+    def b(verdict, holds):
+        claim = {"study": "s", "value": 1.0, "tol": 0.1, "holds": holds, "verdict": verdict, "text": "c"}
+        return {"studies": {"s": "quick"}, "claims": {"c": claim}}
+    drift = compare(b("does not hold", False), b("inconclusive (within numerical error)", False))
+    assert [d.kind for d in drift] == ["verdict"]
+    assert "does not hold -> inconclusive" in drift[0].describe()
