@@ -69,7 +69,7 @@ def plan(cases: Sequence[Any], methods: Mapping[str, Any], variants: Mapping[str
             info = method_info(name)
             if not m.supports(sc.case):
                 absent.setdefault(sc.id, {})[name] = "does not support this configuration"
-            elif not admits(sc.tier, info.cost):
+            elif sc.tier == "none" or not admits(sc.tier, info.cost):
                 absent.setdefault(sc.id, {})[name] = (f"{info.cost} method, run on the study's chosen subset "
                                                       "only")
             else:

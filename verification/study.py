@@ -23,6 +23,8 @@ __all__ = ["CLOSED", "COSTS", "RESOLUTIONS", "VERDICTS", "Claim", "StudyCase", "
 #: The method the paper's claims are about: the closed form is judged, never a reference.
 CLOSED = "closed-form"
 HOLDS, FAILS, INCONCLUSIVE = "holds", "does not hold", "inconclusive (within numerical error)"
+#: Tier of a case no registered method runs.
+NO_METHOD = "none"
 #: Every verdict a claim can have, in the order the report counts them.
 VERDICTS = (HOLDS, FAILS, INCONCLUSIVE, "observed", "n/a")
 
@@ -44,7 +46,10 @@ class StudyCase:
     tier
         The most expensive cost class worth running on this case (``cheap``, ``moderate``,
         ``expensive``): every registered method that supports the case and whose ``cost`` the
-        tier admits runs it. A study marks the subset worth an expensive method.
+        tier admits runs it. A study marks the subset worth an expensive method. ``none``: no
+        registered method runs it (a study that solves it itself in ``analyse``). For studies
+        written against the old protocol, a set of method names is accepted and read as the tier
+        of its most expensive member (the empty set as ``none``).
     variants
         Names of study-declared method variants (module ``VARIANTS``) that run this case too.
     refine
@@ -61,8 +66,14 @@ class StudyCase:
     refine: bool = False
 
     def __post_init__(self) -> None:
-        if self.tier not in COSTS:
-            raise CoatHertzError(f"StudyCase {self.id!r}: tier must be one of {COSTS}, got {self.tier!r}")
+        if isinstance(self.tier, set | frozenset | list | tuple):  # the old protocol's method set
+            from coathertz.methods import method_info
+
+            costs = [COSTS.index(method_info(n).cost) for n in self.tier]
+            object.__setattr__(self, "tier", COSTS[max(costs)] if costs else NO_METHOD)
+        if self.tier not in (*COSTS, NO_METHOD):
+            raise CoatHertzError(f"StudyCase {self.id!r}: tier must be one of {(*COSTS, NO_METHOD)}, "
+                                 f"got {self.tier!r}")
         object.__setattr__(self, "variants", frozenset(self.variants))
 
 

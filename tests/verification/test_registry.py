@@ -108,3 +108,20 @@ def test_inconclusive_verdict():
     holds, inc = judge("within", 0.07, (-2.5, 0.0), 0.11, (-2.48, 0.07))
     assert Claim("x", "t", 0.07, "within [-2.5, 0] %", holds, inconclusive=inc).verdict == INCONCLUSIVE
     assert Claim("x", "t", 0.07, "within [-2.5, 0] %", False).verdict == "does not hold"
+
+
+def test_old_protocol_method_sets_still_work():
+    """A study written against the old protocol (a set of method names) keeps working."""
+    from coathertz.verification import StudyCase, elastic_case
+
+    case = elastic_case(3.0, 0.5)
+    assert StudyCase("a", case, {}, frozenset({"closed-form", "fft"})).tier == "moderate"
+    assert StudyCase("b", case, {}, frozenset({"closed-form", "fft", "fem"})).tier == "expensive"
+    none = StudyCase("c", case, {}, frozenset())
+    assert none.tier == "none"
+    methods, _ = build_methods("tiny", ["closed-form", "fft"])
+    todo, absent = plan([none], methods, {})
+    assert todo == [] and set(absent["c"]) == {"closed-form", "fft"}
+    from coathertz.verification import _common as old
+
+    assert old.StudyCase is StudyCase and old.ALL == "expensive" and old.CF_FFT == "moderate"
