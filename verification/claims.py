@@ -38,11 +38,13 @@ def max_abs(errors: Iterable[dict], quantities: Sequence[str] = QUANTITIES,
     return abs(worst["err"]), len({e["case"] for e in sel}), worst
 
 
-def judged_on(result: StudyResult, cases: Iterable[str]) -> str:
-    """``"FFT (72 cases)"`` or ``"AXISYM (68), FFT (4)"``: the references of a set of cases."""
+def judged_on(result: StudyResult, cases: Iterable[str], references: dict[str, str] | None = None) -> str:
+    """``"FFT (72 cases)"`` or ``"AXISYM (68), FFT (4)"``: the references of a set of cases (the
+    study's, or ``references``: case -> method, where a claim uses another reference)."""
     count: dict[str, int] = {}
+    refs = result.reference if references is None else references
     for c in cases:
-        ref = result.reference.get(c)
+        ref = refs.get(c)
         if ref:
             count[ref] = count.get(ref, 0) + 1
     if not count:
@@ -84,7 +86,7 @@ def bound_claim(cid: str, text: str, result: StudyResult, bound: float,
     sel = [e for e in errs if e["quantity"] in quantities and (where is None or where(e))]
     value, n, worst = max_abs(sel, quantities)
     ids = {e["case"] for e in sel}
-    on = judged_on(result, ids)
+    on = judged_on(result, ids, {e["case"]: e["reference"] for e in sel})
     if worst is None:
         return Claim(cid, text, math.nan, f"< {bound:g} %", None, "%", tol, "no case in this set",
                      judged_against=on)
