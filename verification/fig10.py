@@ -118,6 +118,15 @@ def analyse(result: C.StudyResult) -> None:
             f"fig10-alt-C2delta-{ind}", f"{words}, other reading of eq (21): C2 of alpha_delta = "
             f"{ALT_C2_DELTA} (eq 19b) instead of 0.0885: max |err|", result, BOUND, QUANTITIES, where=on,
             errors=alt))
+        def mid(e, ind=ind):  # where C2 of alpha_delta acts: 1/3 < E < 1
+            return e["indenter"] == ind and 1 / 3 < e["E"] < 1
+        if any(mid(e) for e in result.errors):
+            result.claims.append(C.bound_claim(
+                f"fig10-delta-mid-E-{ind}", f"{words}: max |err| of delta for 1/3 < E < 1, C2 as printed "
+                "(0.0885)", result, BOUND, ("delta",), where=mid))
+            result.claims.append(C.bound_claim(
+                f"fig10-alt-C2delta-mid-E-{ind}", f"{words}: max |err| of delta for 1/3 < E < 1, C2 read as "
+                f"{ALT_C2_DELTA}", result, BOUND, ("delta",), where=mid, errors=alt))
         result.claims.append(C.bound_claim(
             f"fig10-alt-b-as-a-{ind}", f"{words}, other reading of eq (21): alpha_b = alpha_a (the b row "
             "rests on the alpha_a curves; no alpha_b curves exist): max |err|", result, BOUND, QUANTITIES,
