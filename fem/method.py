@@ -102,6 +102,19 @@ class FEMMethod:
         Override the mesh level's elements across ``a`` and domain size (units of max(a, h)).
     """
 
+    # method metadata (coathertz.methods)
+    cost = "expensive"
+    marker = "s"
+    label = "axisymmetric FE"
+    reference_rank = 10
+    source_packages = ("coathertz.fem",)
+
+    @classmethod
+    def settings_for(cls, resolution: str) -> dict[str, Any]:
+        """Coarse mesh at ``tiny``, the default mesh otherwise."""
+        return {"mesh": "coarse" if resolution == "tiny" else "default"}
+
+
     name = "fem"
 
     def __init__(

@@ -1,28 +1,67 @@
 """The interface every method implements, and the registry that lists them.
 
-A method is an object with a ``name``, a ``settings()`` dict (the knobs that change its
-numbers, used as part of the result-store key), ``supports(case) -> bool`` and
-``solve(case) -> ContactResult``. Methods register through the ``coathertz.methods``
-entry-point group in ``pyproject.toml``, so the CLI and the study runner list them
-without a hand-kept table, and a plug-in package can add its own.
+A method is a class registered in the ``coathertz.methods`` entry-point group of
+``pyproject.toml`` (a plug-in package can add its own). Its instances have ``settings()``
+(the knobs that change its numbers, part of the result-store key), ``supports(case)`` and
+``solve(case) -> ContactResult``. The class declares what a study needs to use it well:
+
+``name``
+    Registry name.
+``cost``
+    ``cheap`` | ``moderate`` | ``expensive`` per case: a study runs a method on a case only
+    when the case's tier admits the method's cost (:func:`admits`).
+``marker``, ``label``
+    Matplotlib marker and legend label (every figure and legend takes them from here).
+``reference_rank``
+    Who arbitrates: of the methods that solved a case, the one of highest rank is the reference
+    the closed form is judged against (closed form 0: it is the thing judged).
+``source_packages``
+    Modules / packages whose source defines its numbers; the result store's code version
+    hashes them together with the shared case model (:data:`SHARED_SOURCES`).
+``settings_for(resolution)``
+    Constructor keyword arguments at a study resolution (``tiny`` | ``quick`` | ``full``).
+
+Nothing else in the suite names a method: studies, the store and the report read this
+metadata through :func:`method_info`, :func:`instances_for` and :func:`numerical_sources`.
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass
+from functools import lru_cache
 from importlib.metadata import entry_points
-from typing import Any, Protocol, runtime_checkable
+from typing import Any, ClassVar, Protocol, runtime_checkable
 
 from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError
 from coathertz.results import ContactResult
 
+GROUP = "coathertz.methods"
+#: Cost classes, cheapest first.
+COSTS = ("cheap", "moderate", "expensive")
+#: Study resolutions.
+RESOLUTIONS = ("tiny", "quick", "full")
+#: Modules every method's numbers depend on (the shared case model): always hashed.
+SHARED_SOURCES = ("coathertz.case", "coathertz.materials", "coathertz.hertz", "coathertz.results",
+                  "coathertz.units")
+
 
 @runtime_checkable
 class Method(Protocol):
-    """A way to compute the contact characteristics of a case."""
+    """A way to compute the contact characteristics of a case (see the module docstring)."""
 
-    name: str
+    name: ClassVar[str]
+    cost: ClassVar[str]
+    marker: ClassVar[str]
+    label: ClassVar[str]
+    reference_rank: ClassVar[int]
+    source_packages: ClassVar[tuple[str, ...]]
+
+    @classmethod
+    def settings_for(cls, resolution: str) -> dict[str, Any]:
+        """Constructor keyword arguments at a study resolution."""
+        ...
 
     def settings(self) -> Mapping[str, Any]:
         """Settings that change the numbers (JSON-serialisable)."""
@@ -37,18 +76,112 @@ class Method(Protocol):
         ...
 
 
-GROUP = "coathertz.methods"
+@dataclass(frozen=True)
+class MethodInfo:
+    """The metadata of a registered method (defaults for a plug-in that declares none)."""
+
+    name: str
+    cost: str = "expensive"
+    marker: str = "x"
+    label: str = ""
+    reference_rank: int = 1
+    source_packages: tuple[str, ...] = ()
+
+    def __post_init__(self) -> None:
+        if self.cost not in COSTS:
+            raise CoatHertzError(f"method {self.name!r}: cost must be one of {COSTS}, got {self.cost!r}")
+
+
+def _entry_points() -> dict[str, Any]:
+    return {ep.name: ep for ep in entry_points(group=GROUP)}
 
 
 def method_names() -> list[str]:
     """Names of the registered methods."""
-    return sorted(ep.name for ep in entry_points(group=GROUP))
+    return sorted(_entry_points())
+
+
+def method_class(name: str) -> type:
+    """The registered class (or factory) of method ``name``."""
+    eps = _entry_points()
+    if name not in eps:
+        raise CoatHertzError(f"unknown method {name!r}; choose one of {sorted(eps)}")
+    return eps[name].load()
 
 
 def get_method(name: str, **settings: Any) -> Method:
     """Instantiate the registered method ``name`` with ``settings``."""
-    eps = {ep.name: ep for ep in entry_points(group=GROUP)}
-    if name not in eps:
-        raise CoatHertzError(f"unknown method {name!r}; choose one of {sorted(eps)}")
-    factory = eps[name].load()
-    return factory(**settings)
+    return method_class(name)(**settings)
+
+
+def info_of(obj: Any, name: str | None = None) -> MethodInfo:
+    """:class:`MethodInfo` read from a method class or instance (defaults where absent)."""
+    name = name or getattr(obj, "name", None) or getattr(obj, "__name__", "?")
+    return MethodInfo(name=str(name), cost=getattr(obj, "cost", "expensive"),
+                      marker=getattr(obj, "marker", "x"), label=getattr(obj, "label", "") or str(name),
+                      reference_rank=int(getattr(obj, "reference_rank", 1)),
+                      source_packages=tuple(getattr(obj, "source_packages", ())))
+
+
+@lru_cache(maxsize=64)
+def method_info(name: str) -> MethodInfo:
+    """Metadata of the registered method ``name``; a name that is not registered (e.g. a
+    study's variant such as ``fft-frictionless``) gets the metadata of its registered prefix."""
+    names = method_names()
+    if name not in names:
+        base = max((n for n in names if name.startswith(n + "-")), key=len, default=None)
+        if base is None:
+            return MethodInfo(name=name, label=name)
+        b = method_info(base)
+        return MethodInfo(name, b.cost, b.marker, f"{b.label} ({name[len(base) + 1:]})", b.reference_rank,
+                          b.source_packages)
+    return info_of(method_class(name), name)
+
+
+def settings_for(name: str, resolution: str) -> dict[str, Any]:
+    """Constructor settings of registered method ``name`` at a study resolution."""
+    if resolution not in RESOLUTIONS:
+        raise CoatHertzError(f"resolution must be one of {RESOLUTIONS}, got {resolution!r}")
+    cls = method_class(name)
+    fn = getattr(cls, "settings_for", None)
+    return dict(fn(resolution)) if fn is not None else {}
+
+
+def admits(tier: str, cost: str) -> bool:
+    """Whether a case of ``tier`` (the most expensive cost class worth running on it) admits a
+    method of ``cost``."""
+    if tier not in COSTS:
+        raise CoatHertzError(f"tier must be one of {COSTS}, got {tier!r}")
+    if cost not in COSTS:
+        raise CoatHertzError(f"cost must be one of {COSTS}, got {cost!r}")
+    return COSTS.index(cost) <= COSTS.index(tier)
+
+
+def reference_for(case: ContactCase, methods: Mapping[str, Any] | Iterable[str]) -> str | None:
+    """The arbiter of ``case`` among ``methods`` (names, or name -> instance): the highest
+    ``reference_rank`` above 0 among those that support the case (instances) or are listed
+    (names: the caller passes the methods that solved it). None if there is none."""
+    if isinstance(methods, Mapping):
+        cands = [n for n, m in methods.items() if m is None or m.supports(case)]
+    else:
+        cands = list(methods)
+    ranked = [(method_info(n).reference_rank, n) for n in cands if method_info(n).reference_rank > 0]
+    return max(ranked)[1] if ranked else None
+
+
+def rank_order(names: Iterable[str]) -> list[str]:
+    """Method names, reference first (highest rank), the judged closed form last."""
+    return sorted(names, key=lambda n: (-method_info(n).reference_rank, n))
+
+
+def numerical_sources(names: Sequence[str] | None = None) -> list[str]:
+    """Modules whose source defines the numbers: the shared case model and every registered
+    method's ``source_packages`` (what :func:`coathertz.store.code_version` hashes)."""
+    out = list(SHARED_SOURCES)
+    for n in names if names is not None else method_names():
+        try:
+            pkgs = method_info(n).source_packages
+        except Exception:  # a broken plug-in: its results are not stored anyway
+            continue
+        out += [p for p in pkgs if p not in out]
+    return out

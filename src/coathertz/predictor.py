@@ -33,6 +33,20 @@ class ClosedFormMethod:
         Issue FittedRangeWarning outside the fitted ranges (studies sweep past them on purpose).
     """
 
+    # method metadata (coathertz.methods): class attributes, not dataclass fields
+    cost = "cheap"
+    marker = "-"
+    label = "closed form (eqs 1, 17-19, 21)"
+    reference_rank = 0  # the thing judged, never a reference
+    source_packages = ("coathertz.predictor", "coathertz.extended", "coathertz.alpha", "coathertz.literature",
+                       "coathertz.hertz")
+
+    @classmethod
+    def settings_for(cls, resolution: str) -> dict[str, Any]:
+        """Studies sweep past the fitted ranges on purpose: no range warnings."""
+        return {"warn": False}
+
+
     alpha_rule: str = "paper"
     alphas: Alphas | None = None
     warn: bool = True

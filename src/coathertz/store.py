@@ -66,10 +66,6 @@ CREATE TABLE IF NOT EXISTS results (
 )
 """
 
-#: Source files (relative to the package roots) that do NOT change any method's numbers.
-_NOT_NUMERICAL = ("report", "cli", "store.py", "runner.py", "__pycache__")
-
-
 def _num(x: float) -> Any:
     return to_jsonable(float(x))
 
@@ -106,29 +102,46 @@ def settings_key(settings: Mapping[str, Any]) -> str:
     return _hash(dict(settings))
 
 
+def _source_files(module: str) -> list[tuple[str, Path]]:
+    """(name, path) of the ``*.py`` files of a module or package (empty if it cannot be found)."""
+    import importlib.util
+
+    try:
+        spec = importlib.util.find_spec(module)
+    except (ImportError, ValueError):
+        return []
+    if spec is None:
+        return []
+    if spec.submodule_search_locations:
+        out = []
+        for loc in spec.submodule_search_locations:
+            root = Path(loc)
+            out += [(f"{module}/{p.relative_to(root).as_posix()}", p) for p in sorted(root.rglob("*.py"))
+                    if "__pycache__" not in p.parts]
+        return out
+    return [(module, Path(spec.origin))] if spec.origin and spec.origin.endswith(".py") else []
+
+
 @lru_cache(maxsize=1)
 def code_version() -> str:
     """``<package version>+<hash of the numerical sources>``.
 
-    The hash covers every ``*.py`` file of ``coathertz`` and ``coathertz.fem`` except the
-    report, the CLI, this store and the runner (they do not change a method's numbers).
+    The hash covers the shared case model and every registered method's ``source_packages``
+    (:func:`coathertz.methods.numerical_sources`): a change to a solver or to the case model
+    invalidates stored results; a change to the report, the CLI, the studies, this store or the
+    runner does not. A new method adds its own packages through its metadata, nothing here.
     """
     import coathertz
+    from coathertz.methods import numerical_sources
 
-    roots = [Path(coathertz.__file__).parent]
-    try:
-        import coathertz.fem as fem
-
-        roots.append(Path(fem.__file__).parent)
-    except ImportError:  # pragma: no cover
-        pass
     h = hashlib.sha256()
-    for root in roots:
-        for path in sorted(root.rglob("*.py")):
-            rel = path.relative_to(root)
-            if rel.parts[0] in _NOT_NUMERICAL:
+    seen: set[Path] = set()
+    for module in numerical_sources():
+        for name, path in _source_files(module):
+            if path in seen:
                 continue
-            h.update(str(rel).encode())
+            seen.add(path)
+            h.update(name.encode())
             h.update(path.read_bytes())
     return f"{coathertz.__version__}+{h.hexdigest()[:12]}"
 

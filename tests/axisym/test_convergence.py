@@ -7,10 +7,11 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from .conftest import coated
 
 from coathertz.axisym import AxisymMethod
 from coathertz.materials import RIGID
+
+from .conftest import coated
 
 CASES = {
     "soft thin (E=1/4, H=0.01)": coated(0.25, 0.01),

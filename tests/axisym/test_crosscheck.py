@@ -12,11 +12,12 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from .conftest import coated
 
 from coathertz.axisym import AxisymMethod
 from coathertz.casefile import load_case
 from coathertz.materials import RIGID
+
+from .conftest import coated
 
 TOL = 2e-4  # issue 8: delta and p0 within 2e-4 of FFT (n = 256) and FE (fine mesh)
 

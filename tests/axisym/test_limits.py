@@ -9,11 +9,12 @@ import math
 
 import numpy as np
 import pytest
-from .conftest import STEEL, coated, homogeneous
 
 from coathertz.axisym import AxisymMethod
 from coathertz.hertz import hertz_circular
 from coathertz.materials import RIGID, Material
+
+from .conftest import STEEL, coated, homogeneous
 
 M = AxisymMethod()
 

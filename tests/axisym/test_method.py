@@ -8,13 +8,14 @@ import warnings
 
 import numpy as np
 import pytest
-from .conftest import R_SPHERE, STEEL, coated
 
 from coathertz.axisym import AxisymMethod
 from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError
 from coathertz.materials import Body
 from coathertz.methods import get_method, method_names
+
+from .conftest import R_SPHERE, STEEL, coated
 
 
 def test_registered_with_metadata():

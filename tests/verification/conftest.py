@@ -12,10 +12,15 @@ if str(HERE) not in sys.path:
     sys.path.insert(0, str(HERE))
 
 
+def pytest_configure(config):
+    config.addinivalue_line("markers", "browser: needs a headless Chromium (skipped, with the reason, "
+                            "without one)")
+
+
 @pytest.fixture(scope="session")
 def tiny_methods():
     """Closed form and a coarse FFT (n = 32): what the tiny studies run in the tests."""
-    from coathertz.verification._common import build_methods
+    from coathertz.verification import build_methods
 
     methods, notes = build_methods("tiny", ["closed-form", "fft"])
     assert not notes, notes
@@ -26,8 +31,7 @@ def tiny_methods():
 def tiny_results(tiny_methods, tmp_path_factory):
     """Every study run once at the tiny resolution (shared store), keyed by study name."""
     from coathertz.store import ResultStore
-    from coathertz.verification import studies
-    from coathertz.verification._common import run_study
+    from coathertz.verification import run_study, studies
 
     store = ResultStore(tmp_path_factory.mktemp("store") / "store.sqlite")
     out = {name: run_study(mod, "tiny", tiny_methods, store, {"workers": 1, "progress": False})

@@ -49,3 +49,33 @@ def cases(n: int) -> list[ContactCase]:
     sub, coat = Material(200e9, 0.3), Material(400e9, 0.3)
     return [ContactCase.sphere_on_coated_half_space(10e-3, 1.0 + i, coat, 1e-6, sub, label=f"c{i}")
             for i in range(n)]
+
+
+@dataclass(frozen=True)
+class FifthMethod:
+    """A registered-looking method with the full metadata of :mod:`coathertz.methods`: Hertz of the
+    substrate scaled by ``bias`` (so its results are recognisable), ranked above the FFT."""
+
+    bias: float = 1.0
+    name: str = "fifth"
+
+    cost = "cheap"
+    marker = "P"
+    label = "fifth method (test)"
+    reference_rank = 25
+    source_packages = ("fake_method",)
+
+    @classmethod
+    def settings_for(cls, resolution: str) -> dict:
+        return {"bias": {"tiny": 1.001, "quick": 1.0, "full": 1.0}[resolution]}
+
+    def settings(self) -> dict:
+        return {"bias": self.bias}
+
+    def supports(self, case: ContactCase) -> bool:
+        return case.is_circular
+
+    def solve(self, case: ContactCase) -> ContactResult:
+        h = case.hertz_s
+        return ContactResult(self.name, float(h.delta0) * self.bias, float(h.a0) * self.bias,
+                             float(h.p0) * self.bias, case.W)

@@ -150,7 +150,7 @@ def test_dask_local_cluster(tmp_path):
 
 def test_fe_method_runs_in_worker_processes(tmp_path):
     """The real FE method pickles into the pool and its result lands in the store."""
-    from coathertz.verification._common import build_methods, elastic_case
+    from coathertz.verification import build_methods, elastic_case
 
     methods, notes = build_methods("tiny", ["fem"])
     if "fem" not in methods:
@@ -167,8 +167,7 @@ def test_fe_method_runs_in_worker_processes(tmp_path):
 def test_study_on_dask_local_cluster(tmp_path, tiny_methods):
     """A small study (fig 3, tiny) through a LocalCluster gives the same claims as locally."""
     distributed = pytest.importorskip("distributed")
-    from coathertz.verification import get_study
-    from coathertz.verification._common import run_study
+    from coathertz.verification import get_study, run_study
 
     mod = get_study("fig3")
     with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False,

@@ -52,7 +52,7 @@ def test_round_trip_error_and_version(tmp_path):
 
 
 def test_rigid_and_infinite_values_serialise(tmp_path):
-    from coathertz.verification._common import rigid_substrate_case
+    from coathertz.verification import rigid_substrate_case
 
     c = rigid_substrate_case(200e9, 0.5)
     with ResultStore(tmp_path / "s.sqlite", version="v") as st:

@@ -47,21 +47,22 @@ def _sigterm(signum, frame):  # pragma: no cover - exercised through a subproces
 def run(args: argparse.Namespace) -> int:
     from coathertz.cli._common import output_dir
     from coathertz.errors import CoatHertzError
-    from coathertz.methods import method_names
+    from coathertz.methods import method_info, method_names
     from coathertz.report import write_report
     from coathertz.report.baseline import load_baseline
+    from coathertz.report.document import verdict_counts
     from coathertz.report.provenance import collect
     from coathertz.store import open_run_store
-    from coathertz.verification import get_study, studies
-    from coathertz.verification._common import VARIANTS, build_methods, run_study
+    from coathertz.verification import build_methods, get_study, run_study, studies
 
     if args.list:
         for name, mod in studies().items():
             print(f"study  {name:10s} {mod.TITLE}")
+            for v, (base, extra) in getattr(mod, "VARIANTS", {}).items():
+                print(f"         variant {v}: {base} with {extra} (runs with {base}, on this study's cases)")
         for name in method_names():
-            print(f"method {name}")
-        for name, (base, extra) in VARIANTS.items():
-            print(f"method {name} (variant of {base}: {extra}; runs with {base}, where a study asks for it)")
+            i = method_info(name)
+            print(f"method {name:12s} {i.label}; cost {i.cost}, reference rank {i.reference_rank}")
         return 0
     if args.workers < 1:
         raise CoatHertzError(f"--workers must be >= 1, got {args.workers}")
@@ -82,10 +83,10 @@ def run(args: argparse.Namespace) -> int:
         for mod in mods:
             r = run_study(mod, args.resolution, methods, store, opts)
             results.append(r)
-            verdicts = [c.verdict for c in r.claims]
-            print(f"{r.name:9s} {len({x['case'] for x in r.rows}):5d} cases ({r.computed} computed, "
-                  f"{r.reused} reused) {r.wall_time:7.1f} s  claims: {verdicts.count('holds')} hold, "
-                  f"{verdicts.count('does not hold')} do not, {len(verdicts)} in all", flush=True)
+            n = len({x['case'] for x in r.rows})
+            print(f"{r.name:9s} {n:5d} case{'s' if n != 1 else ' '} ({r.computed} solved now, "
+                  f"{r.reused} reused from the store) {r.wall_time:7.1f} s  claims: "
+                  f"{verdict_counts([c.verdict for c in r.claims])}", flush=True)
     except KeyboardInterrupt:
         print(f"coathertz verify: interrupted; {store.count()} results are in {store.path}; "
               "run the same command again to resume", file=sys.stderr)
@@ -102,6 +103,7 @@ def run(args: argparse.Namespace) -> int:
     store.export_json(out / "store.json")
     store.close()
     files = write_report(results, out, prov, {m.NAME: m for m in mods}, baseline, notes)
+    print(f"all studies: {verdict_counts([c.verdict for r in results for c in r.claims])}")
     print(f"report: {files.html} ({total:.1f} s)")
     if files.drift is not None:
         if files.drifted:

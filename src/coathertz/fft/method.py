@@ -140,6 +140,25 @@ class FFTMethod:
         Return the pressure and displacement arrays in ``ContactResult.fields``.
     """
 
+    # method metadata (coathertz.methods): class attributes, not dataclass fields
+    cost = "moderate"
+    marker = "o"
+    label = "DC-FFT"
+    reference_rank = 20
+    source_packages = ("coathertz.fft",)
+
+    @classmethod
+    def settings_for(cls, resolution: str) -> dict[str, Any]:
+        """The paper's 128 x 128 grid (32 at ``tiny``); one FFT thread (the runner supplies
+        the parallelism), no fields kept."""
+        return {"n": 32 if resolution == "tiny" else 128, "keep_fields": False, "workers": 1}
+
+    @classmethod
+    def refined_settings(cls, resolution: str) -> dict[str, Any]:
+        """Twice the grid (convergence estimate of a study's reference)."""
+        return {**cls.settings_for(resolution), "n": 2 * cls.settings_for(resolution)["n"]}
+
+
     n: int = DEFAULT_N
     margin: float = DEFAULT_MARGIN
     spacing_ratio: float | None = None

@@ -4,6 +4,9 @@
 studies' figures (PNG and SVG), the E x H error maps and pairwise-difference plots,
 ``index.html`` (self-contained), ``summary.md``, ``results.json`` (claims and tidy rows),
 ``baseline.json`` (for ``coathertz verify --baseline``) and ``rows/<study>.csv``.
+
+The report imports only public names: the study framework's (:mod:`coathertz.verification`),
+the registry's (:mod:`coathertz.methods`) and its own modules.
 """
 
 from __future__ import annotations
@@ -11,7 +14,6 @@ from __future__ import annotations
 import csv
 import inspect
 import json
-import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -19,6 +21,7 @@ from typing import Any
 
 from coathertz.report.baseline import Drift, baseline_dict, compare, write_baseline
 from coathertz.report.document import html_page, markdown
+from coathertz.report.jsonsafe import json_safe
 
 __all__ = ["Drift", "ReportFiles", "compare", "write_report"]
 
@@ -37,18 +40,6 @@ class ReportFiles:
         return [d for d in (self.drift or []) if d.is_drift]
 
 
-def _json_safe(v: Any) -> Any:
-    if isinstance(v, float) and not math.isfinite(v):
-        return str(v)
-    if isinstance(v, dict):
-        return {str(k): _json_safe(x) for k, x in v.items()}
-    if isinstance(v, list | tuple):
-        return [_json_safe(x) for x in v]
-    if hasattr(v, "item") and callable(v.item):
-        return _json_safe(v.item())
-    return v
-
-
 def _write_csv(path: Path, rows: Sequence[dict]) -> None:
     if not rows:
         return
@@ -62,18 +53,21 @@ def _write_csv(path: Path, rows: Sequence[dict]) -> None:
 
 
 BARS = (("a_bar", "a"), ("p_bar", "p"), ("delta_bar", "delta"))
-METHODS = ("closed-form", "fft", "fem")
 
 
-def side_by_side(rows: Sequence[dict], limit: int = 60) -> list[dict]:
-    """The bars of every case that all three methods solved, one row per case (report table)."""
-    by_case: dict[str, dict[str, dict]] = {}
-    for r in rows:
-        by_case.setdefault(r["case"], {})[r["method"]] = r
+def side_by_side(rows: Sequence[dict], methods: Sequence[str], limit: int = 60) -> list[dict]:
+    """The bars of every case that all the study's registered ``methods`` solved, one row per case,
+    methods in rank order (reference first)."""
+    from coathertz.methods import rank_order
+    from coathertz.verification import group_by_case
+
+    names = rank_order(methods)
+    if len(names) < 2:
+        return []
     out = []
-    for cid, ms in by_case.items():
-        if all(m in ms for m in METHODS):
-            out.append({"case": cid, **{f"{q}:{m}": ms[m][k] for k, q in BARS for m in METHODS}})
+    for cid, ms in group_by_case(rows).items():
+        if all(m in ms for m in names):
+            out.append({"case": cid, **{f"{q}:{m}": ms[m][k] for k, q in BARS for m in names}})
     return out[:limit]
 
 
@@ -86,8 +80,9 @@ def write_report(
     notes: Sequence[str] = (),
 ) -> ReportFiles:
     """Write the full report of ``results`` (study results) into ``outdir``."""
+    from coathertz.methods import method_names
     from coathertz.report.figures import error_heatmaps, pairwise_plot
-    from coathertz.verification._common import pairwise_summary
+    from coathertz.verification import crosscheck_summary
 
     out = Path(outdir)
     figdir = out / "figures"
@@ -105,17 +100,16 @@ def write_report(
         if generic:
             paths += error_heatmaps(r, figdir)
             paths += pairwise_plot(r, figdir)
-            qs = [q for q in ("a", "r_a", "r_b", "p", "delta") if any(e["quantity"] == q for e in r.errors)]
-            r.extra["pairwise"] = pairwise_summary(
-                [x for x in r.rows if not x["method"].endswith("-equiv")], qs or ("a", "p", "delta"))
-            r.extra["side_by_side"] = side_by_side(r.rows)
+            r.extra["pairwise"] = crosscheck_summary(r.crosscheck)
+            registered = set(method_names())
+            r.extra["side_by_side"] = side_by_side(r.rows, [m for m in r.methods if m in registered])
         figures[r.name] = paths
         _write_csv(out / "rows" / f"{r.name}.csv", r.rows)
         _write_csv(out / "rows" / f"{r.name}_errors.csv", r.errors)
     current = baseline_dict(results, provenance)
     drift = compare(baseline, current) if baseline is not None else None
     results_path = out / "results.json"
-    results_path.write_text(json.dumps(_json_safe({"provenance": provenance,
+    results_path.write_text(json.dumps(json_safe({"provenance": provenance,
                                                    "studies": [r.to_json() for r in results]}), indent=1))
     base_path = write_baseline(out / "baseline.json", results, provenance)
     md = out / "summary.md"

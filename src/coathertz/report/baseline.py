@@ -16,11 +16,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from coathertz.report.jsonsafe import json_safe
+
 FORMAT = 1
-
-
-def _v(x: float) -> Any:
-    return x if math.isfinite(x) else str(x)
 
 
 def baseline_dict(results: Iterable[Any], provenance: dict | None = None) -> dict:
@@ -29,8 +27,10 @@ def baseline_dict(results: Iterable[Any], provenance: dict | None = None) -> dic
     for r in results:
         studies[r.name] = r.resolution
         for c in r.claims:
-            claims[c.id] = {"study": r.name, "value": _v(c.value), "tol": c.tol, "unit": c.unit,
-                            "holds": c.holds, "text": c.text}
+            claims[c.id] = json_safe({"study": r.name, "value": c.value, "tol": c.tol, "unit": c.unit,
+                                      "holds": c.holds, "verdict": c.verdict, "text": c.text,
+                                      "uncertainty": getattr(c, "uncertainty", math.nan),
+                                      "judged_against": getattr(c, "judged_against", "")})
     return {"format": FORMAT, "studies": studies, "claims": claims,
             "provenance": {k: (provenance or {}).get(k) for k in ("version", "git_commit", "date",
                                                                    "resolution")}}
@@ -76,6 +76,8 @@ class Drift:
         if self.kind == "new":
             return f"{self.claim}: new claim ({self.new}), not in the baseline"
         if self.kind == "verdict":
+            if isinstance(self.old, str):
+                return f"{self.claim}: verdict changed ({self.old} -> {self.new})"
             return f"{self.claim}: verdict changed (holds {self.old} -> {self.new})"
         return f"{self.claim}: {self.old:.4g} -> {self.new:.4g} (moved more than {self.tol:g})"
 
@@ -103,6 +105,8 @@ def compare(baseline: dict, current: dict) -> list[Drift]:
         both_nan = math.isnan(ov) and math.isnan(nv)
         if not both_nan and not (abs(nv - ov) <= tol):
             out.append(Drift(cid, o["study"], "moved", ov, nv, tol, o["text"]))
+        elif o.get("verdict", o.get("holds")) != n.get("verdict", n.get("holds")) and "verdict" in o:
+            out.append(Drift(cid, o["study"], "verdict", o["verdict"], n.get("verdict"), tol, o["text"]))
         elif o.get("holds") != n.get("holds"):
             out.append(Drift(cid, o["study"], "verdict", o.get("holds"), n.get("holds"), tol, o["text"]))
     for cid, n in sorted(new.items()):

@@ -1,8 +1,9 @@
 """Report figures common to every study: E x H error maps and pairwise method differences.
 
 The study modules draw the paper's figures themselves (``plot``); these are the views the report
-adds to each study: where in the (E, H) plane the closed form errs against each numerical method,
-and how far the methods are apart on the cases they share.
+adds to each study: where in the (E, H) plane the closed form errs against each case's reference
+(the top-ranked method that solved it), and how far every other method lies from that reference
+on the cases they share (the cross-checks).
 """
 
 from __future__ import annotations
@@ -17,13 +18,13 @@ QLABEL = {"a": "a", "p": "$p_0$", "delta": r"$\delta$", "r_a": "$r_a$", "r_b": "
 
 
 def _save(fig, outdir: Path, name: str) -> list[Path]:
-    from coathertz.verification._common import save
+    from coathertz.report.plotting import save
 
     return save(fig, outdir, name)
 
 
 def error_heatmaps(result, outdir: str | Path) -> list[Path]:
-    """One figure per numerical reference: error of the closed form over (E, H), one panel per quantity.
+    """One figure per reference method: error of the closed form over (E, H), one panel per quantity.
 
     Where a study has further parameters (the Poisson check's nu_c), each cell shows the error of
     largest magnitude over them (sign kept).
@@ -65,7 +66,7 @@ def error_heatmaps(result, outdir: str | Path) -> list[Path]:
             ax.set_ylabel(r"E = $E_c^*/E_s^*$")
             ax.set_title(f"{QLABEL[q]}: max |err| {np.nanmax(np.abs(Z)):.2f} %", fontsize=9)
             fig.colorbar(im, ax=ax, label="error [%]")
-        fig.suptitle(f"{result.name}: error of the closed form against {ref.upper()}, "
+        fig.suptitle(f"{result.name}: error of the closed form against the reference, {ref.upper()} "
                      "(predicted - numerical)/numerical", fontsize=10)
         fig.tight_layout()
         paths += _save(fig, Path(outdir), f"{result.name}_errmap_{ref}")
@@ -73,22 +74,19 @@ def error_heatmaps(result, outdir: str | Path) -> list[Path]:
 
 
 def pairwise_plot(result, outdir: str | Path, quantities: Sequence[str] | None = None) -> list[Path]:
-    """Pairwise differences of the methods on every case two or more of them solved."""
+    """Cross-checks: every other method's difference from the case's reference, per quantity."""
     import matplotlib
 
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
 
-    from coathertz.verification._common import pairwise
-
-    qs = quantities or [q for q in ("a", "r_a", "r_b", "p", "delta")
-                        if any(e["quantity"] == q for e in result.errors)] or ["a", "p", "delta"]
-    diffs = pairwise([r for r in result.rows if not r["method"].endswith("-equiv")], qs)
+    diffs = [d for d in result.crosscheck if quantities is None or d["quantity"] in quantities]
     if not diffs:
         return []
+    qs = [q for q in ("a", "r_a", "r_b", "p", "delta") if any(d["quantity"] == q for d in diffs)]
     pairs = sorted({d["pair"] for d in diffs})
     use_h = all("H" in d for d in diffs)
-    fig, axes = plt.subplots(1, len(pairs), figsize=(4.2 * len(pairs), 3.3), squeeze=False)
+    fig, axes = plt.subplots(1, len(pairs), figsize=(4.4 * len(pairs), 3.4), squeeze=False)
     markers = dict(zip(qs, "os^vD", strict=False))
     for j, pair in enumerate(pairs):
         ax = axes[0, j]
@@ -104,10 +102,12 @@ def pairwise_plot(result, outdir: str | Path, quantities: Sequence[str] | None =
         else:
             ax.set_xlabel("case")
         ax.axhline(0, color="k", lw=0.6)
-        ax.set_ylabel("difference [%] (first / second - 1)")
-        ax.set_title(pair, fontsize=9)
+        m, ref = pair.split(" vs ")
+        ax.set_ylabel(f"{m} / {ref} - 1 [%]")
+        ax.set_title(f"{pair} (reference)", fontsize=9)
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=7)
-    fig.suptitle(f"{result.name}: pairwise differences between methods", fontsize=10)
+    fig.suptitle(f"{result.name}: cross-checks, each method's difference from the case's reference "
+                 "(the spread is the claims' numerical uncertainty)", fontsize=9)
     fig.tight_layout()
     return _save(fig, Path(outdir), f"{result.name}_pairwise")

@@ -19,14 +19,17 @@ def _git(args: list[str], cwd: Path) -> str:
 
 
 def git_info(path: str | Path | None = None) -> dict[str, Any]:
-    """Commit, branch and dirty flag of the source tree (read-only git queries; empty if no git)."""
+    """Commit and dirty flag of the source tree (read-only git queries; empty if no git). Changes
+    under ``reports/`` (generated output, e.g. a published report being regenerated) are not dirt."""
     import coathertz
 
     cwd = Path(path) if path else Path(coathertz.__file__).resolve().parent
     commit = _git(["rev-parse", "HEAD"], cwd)
     if not commit:
         return {"commit": "unknown", "dirty": None}
-    status = _git(["status", "--porcelain", "--untracked-files=no"], cwd)
+    # dirty = the source differs from the commit; generated reports (reports/) are output, not source
+    status = _git(["status", "--porcelain", "--untracked-files=no", "--", ":(top)",
+                   ":(top,exclude)reports"], cwd)
     return {"commit": commit, "short": commit[:10], "dirty": bool(status)}
 
 
