@@ -19,9 +19,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from coathertz.jsonsafe import to_jsonable as json_safe
 from coathertz.report.baseline import Drift, baseline_dict, compare, write_baseline
 from coathertz.report.document import html_page, markdown
-from coathertz.report.jsonsafe import json_safe
 
 __all__ = ["Drift", "ReportFiles", "compare", "write_report"]
 

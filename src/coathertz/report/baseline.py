@@ -16,7 +16,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from coathertz.report.jsonsafe import json_safe
+from coathertz.jsonsafe import to_jsonable as json_safe
 
 FORMAT = 1
 
