@@ -1,12 +1,13 @@
 """Claims against the arbiter, with the numerical uncertainty that decides inconclusive verdicts.
 
 Every claim of a study is computed from :attr:`StudyResult.errors` (the closed form against
-each case's reference: the top-ranked method that solved it). Its uncertainty is the spread
-between the methods that solved the same cases (:attr:`StudyResult.uncertainty`, the largest
-|cross-check difference|): over the claim's own cases where any was cross-checked, else over
-the study's cross-checked cases (said so in the detail), else not estimated. A cross-check is
-another numerical method on the same case, or the reference itself at refined settings on the
-cases a study marks ``refine`` (a grid convergence estimate, ``<method>-refined``).
+each case's reference: the top-ranked method that solved it). Its uncertainty is, in this order:
+the reference re-solved at refined settings on the cases a study marks ``refine`` (a convergence
+estimate of the reference itself, ``<method>-refined``), over the claim's own cases, else over the
+study's refined cases; else the spread between the methods that solved the same cases
+(:attr:`StudyResult.uncertainty`, the largest |cross-check difference|: conservative, since it
+measures the less accurate method's error too), over the claim's cases, else the study's; else
+not estimated. The detail says which.
 """
 
 from __future__ import annotations
@@ -67,6 +68,17 @@ def uncertainty_for(result: StudyResult, cases: Iterable[str], quantities: Seque
                 for q in qs if q in result.uncertainty[c]]
         return (max(vals), len({c for c in ids if c in result.uncertainty})) if vals else (math.nan, 0)
 
+    # A reference re-solved at refined settings measures the reference's own error; the spread to
+    # the other methods measures theirs as much (conservative). Prefer the convergence estimate.
+    refined = set(result.extra.get("refined", {}))
+    u, n = spread(cases & refined)
+    if n:
+        return u, (f"reference re-solved at refined settings on {plural(n, 'case')} of this set "
+                   "(convergence estimate)")
+    u, n = spread(refined)
+    if n:
+        return u, (f"reference re-solved at refined settings on the study's {plural(n, 'case')} "
+                   "(none in this set; convergence estimate)")
     u, n = spread(cases)
     if n:
         return u, f"largest cross-check difference on {plural(n, 'cross-checked case')} of this set"

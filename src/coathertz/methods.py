@@ -43,7 +43,7 @@ COSTS = ("cheap", "moderate", "expensive")
 #: Study resolutions.
 RESOLUTIONS = ("tiny", "quick", "full")
 #: Modules every method's numbers depend on (the shared case model): always hashed.
-SHARED_SOURCES = ("coathertz.case", "coathertz.materials", "coathertz.hertz", "coathertz.results",
+SHARED_SOURCES = ("coathertz.case", "coathertz.materials", "coathertz.hertz", "coathertz.results", "coathertz.validity",
                   "coathertz.units")
 
 

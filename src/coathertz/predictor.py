@@ -34,6 +34,7 @@ class ClosedFormMethod:
     """
 
     # method metadata (coathertz.methods): class attributes, not dataclass fields
+    inline = True  # microseconds per case: the runner solves it in the calling process
     cost = "cheap"
     marker = "-"
     label = "closed form (eqs 1, 17-19, 21)"

@@ -44,8 +44,6 @@ from coathertz.errors import CoatHertzError, ModelValidityWarning
 from coathertz.methods import Method
 from coathertz.store import ResultStore, StoredResult, case_key, settings_key
 
-#: Methods run in the calling process even when a process pool is used (cheaper than a hop).
-INLINE_METHODS = ("closed-form",)
 DEFAULT_WORKERS = 2
 
 
@@ -159,7 +157,7 @@ def run_tasks(
     scheduler: Any = None,
     progress: bool = True,
     chunk_size: int | None = None,
-    inline: Sequence[str] = INLINE_METHODS,
+    inline: Sequence[str] | None = None,
     retry_errors: bool = False,
     stop_after: int | None = None,
     desc: str = "cases",
@@ -180,7 +178,8 @@ def run_tasks(
     chunk_size
         Cases per submitted chunk (default 8 for methods with ``solve_many``, else 1).
     inline
-        Method names always run in this process.
+        Method names always run in this process; default: the methods that declare
+        ``inline = True`` (a closed form: cheaper than a hop to a worker).
     retry_errors
         Rerun cases whose stored result is an error.
     stop_after
@@ -234,6 +233,8 @@ def run_tasks(
         outcome.method_time[method.name] = outcome.method_time.get(method.name, 0.0) + dt
 
     try:
+        if inline is None:
+            inline = {t.method.name for t in pending if getattr(t.method, "inline", False)}
         local = [t for t in pending if t.method.name in inline]
         remote = [t for t in pending if t.method.name not in inline]
         if scheduler is None and workers <= 1:

@@ -137,6 +137,13 @@ class AxisymMethod:
             raise CoatHertzError(f"resolution must be one of ('tiny', 'quick', 'full'), got {resolution!r}")
         return {"keep_fields": False}
 
+    @classmethod
+    def refined_settings(cls, resolution: str) -> dict[str, Any]:
+        """Twice the Legendre modes and four more ``xi`` nodes per panel: a study re-solves the
+        cases it marks ``refine`` with these, and the difference is this reference's numerical
+        uncertainty there (a convergence estimate, about 1e-9; see the package docstring)."""
+        return {**cls.settings_for(resolution), "c_modes": 2.0 * cls.c_modes, "order": cls.order + 4}
+
     # Method protocol ---------------------------------------------------------------------------
     def settings(self) -> Mapping[str, Any]:
         d = asdict(self)
