@@ -27,7 +27,6 @@ from coathertz.alpha import Alphas
 from coathertz.case import ContactCase
 from coathertz.casefile import load_example
 from coathertz.extended import predict
-from coathertz.materials import RIGID, Body
 
 NAME = "section6"
 TITLE = "Section 6: B4C on steel; Keer et al.'s coated balls (cases A and B)"
@@ -45,13 +44,9 @@ ERRATA = {"keer_b": "; paper erratum: its own E*_a = 213.47 GPa gives a = 32.752
 
 
 def equivalent(case: ContactCase) -> ContactCase | None:
-    """Two identical coated spheres -> a rigid sphere of radius 2 R on one of the coated half-spaces."""
-    b1, b2 = case.body1, case.body2
-    if not (b1.is_coated and b2.is_coated and b1.material == b2.material and b1.coating == b2.coating
-            and case.is_circular):
-        return None
-    return ContactCase(Body(RIGID, None, 2 * case.R, 2 * case.R), Body.half_space(b1.material, b1.coating),
-                       case.W, label=f"{case.label} (equivalent)")
+    """Two identical coated spheres -> a rigid sphere of radius 2 R on one of the coated half-spaces
+    (:meth:`ContactCase.identical_pair_equivalent`)."""
+    return case.identical_pair_equivalent() if case.body1.is_coated else None
 
 
 def cases(resolution: str) -> list[C.StudyCase]:
