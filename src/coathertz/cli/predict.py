@@ -23,8 +23,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--alpha", help="explicit alpha values 'a=..,p=..,delta=..' (e.g. read from figure 5)"
     )
-    parser.add_argument("--alpha-rule", default="paper", choices=["paper", "eq21-fill"],
-                        help="how the parts of eq (19) missing from the copy are filled (NOTES.md)")
+    parser.add_argument("--alpha-rule", default="paper", choices=["paper", "eq21-fill", "refit"],
+                        help="alpha rule: 'paper' or 'eq21-fill' (how the parts of eq (19) missing from "
+                             "the copy are filled, NOTES.md), or 'refit' (smooth refitted alpha with a "
+                             "validated error bound, coathertz.refit)")
     parser.add_argument("--json", action="store_true", help="machine-readable output")
 
 
@@ -66,6 +68,8 @@ def run(args: argparse.Namespace) -> int:
         "E_star": res.meta["E_star"],
         "warnings": msgs,
     }
+    if "refit_bound" in res.meta:
+        info["refit_bound"] = res.meta["refit_bound"]
     if args.json:
         print(to_json({"units": "SI (m, Pa, N)", **info, **rows}))
         return 0
@@ -89,6 +93,8 @@ def run(args: argparse.Namespace) -> int:
             row += [_um(r["r_a"]), _um(r["r_b"])]
         table.append(row)
     print(format_table(header, table))
+    if "refit_bound" in res.meta:
+        print(res.meta["refit_bound"]["text"])
     for m in msgs:
         print(f"warning: {m}")
     return 0
