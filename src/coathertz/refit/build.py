@@ -18,9 +18,10 @@ from collections.abc import Mapping
 import numpy as np
 
 from coathertz.alpha import ELLIPTICAL_RULE, PAPER_RULE, alpha_rigid
+from coathertz.refit import direct as DI
 from coathertz.refit import ellipse as EL
 from coathertz.refit import model as M
-from coathertz.refit.fit import FitSettings, error_stats, fit_surface
+from coathertz.refit.fit import FitSettings, error_stats, fit_surface, single_alpha_floor
 from coathertz.refit.surface import Surface, term_set
 from coathertz.refit.sweep import select, table_hash
 
@@ -30,6 +31,7 @@ DEFAULT_SETTINGS = {
     "elastic": FitSettings((7, 5, 2, 2), ((3, 2), (3, 2)), reweight=0),
     "rigid": FitSettings((8, 4), (), reweight=0),
     "ellipse": FitSettings((4, 3, 2), ((2, 2),), reweight=0),
+    "direct": FitSettings((7, 5, 2, 2), ((3, 2), (3, 2)), ridge=1e-10),
 }
 
 #: Bin edges of the validated error table, per configuration: (variable, edges).
@@ -103,7 +105,8 @@ def build(table: Mapping, *, settings: Mapping[str, FitSettings] | None = None,
     """Fit every configuration present in ``table`` and return the data-file dict."""
     settings = {**DEFAULT_SETTINGS, **(settings or {})}
     out: dict = {"format": FORMAT, "provenance": dict(provenance or {}), "ranges": {}, "settings": {},
-                 "surfaces": {}, "fit_error": {}, "validation_error": {}, "paper_error": {}, "bounds": {}}
+                 "surfaces": {}, "fit_error": {}, "validation_error": {}, "paper_error": {}, "bounds": {},
+                 "single_alpha_floor": {}}
     out["provenance"]["sweep_sha256"] = table_hash(table)
     t0 = time.perf_counter()
     models: dict[str, M.AlphaModel] = {}
@@ -124,6 +127,7 @@ def build(table: Mapping, *, settings: Mapping[str, FitSettings] | None = None,
             surfs[q] = res.surface
             fit_err[q] = error_stats(100.0 * np.expm1(res.residual))
         model = models[config] = M.AlphaModel(config, surfs)
+        out["single_alpha_floor"][config] = _floor(config, select(table, config=config))
         out["surfaces"][config] = {q: sf.to_dict() for q, sf in surfs.items()}
         out["settings"][config] = s.to_dict()
         out["fit_error"][config] = fit_err
@@ -135,6 +139,20 @@ def build(table: Mapping, *, settings: Mapping[str, FitSettings] | None = None,
                 q: error_stats(100.0 * (paper_bars(config, q, va) / va[f"{q}_bar"] - 1))
                 for q in M.QUANTITIES}
             out["bounds"][config] = _bins(config, va, errs)
+    tr, va = select(table, config="elastic", set="train"), select(table, config="elastic", set="valid")
+    if len(tr["H"]):
+        s = settings["direct"]
+        dsurf, derr = {}, {}
+        for q in M.QUANTITIES:
+            dsurf[q], derr[q] = DI.fit(q, tr, s)
+        d: dict = {"surfaces": {q: sf.to_dict() for q, sf in dsurf.items()}, "settings": s.to_dict(),
+                   "fit_error": derr}
+        if len(va["H"]):
+            errs = {q: 100.0 * np.expm1(DI.log_bar(dsurf[q], q, va["E"], va["H"], va["nu_c"], va["nu_s"])
+                                        - np.log(va[f"{q}_bar"])) for q in M.QUANTITIES}
+            d["validation_error"] = {q: error_stats(e) for q, e in errs.items()}
+            d["bounds"] = _bins("elastic", va, errs)
+        out["direct"] = d
     tr, va = select(table, config="ellipse", set="train"), select(table, config="ellipse", set="valid")
     if len(tr["H"]) and "elastic" in models:
         s = settings["ellipse"]
@@ -180,3 +198,24 @@ def _ranges(config: str, cols) -> dict:
     if config == "ellipse":
         r["rho"] = [float(np.min(cols["rho"])), float(np.max(cols["rho"]))]
     return r
+
+
+def _floor(config: str, cols, target: float = 0.3) -> dict:
+    """Where no single alpha reaches ``target`` % (all points of ``config``), per quantity."""
+    rigid = config == "rigid"
+    res = {}
+    for q in M.QUANTITIES:
+        def f(al, q=q):
+            c = {k: np.asarray(cols[k], dtype=float)[:, None] for k in ("E", "H", "nu_c", "nu_s")}
+            return M.bar_from_alpha(q, al, c["E"], c["H"], c["nu_c"], c["nu_s"], rigid=rigid)
+
+        fl = single_alpha_floor(f, np.log(np.asarray(cols[f"{q}_bar"], dtype=float)))
+        bad = fl > target
+        k = int(np.argmax(fl))
+        res[q] = {"target_percent": target, "n": int(fl.size), "n_above_target": int(bad.sum()),
+                  "max_percent": round(float(fl.max()), 4),
+                  "worst": {v: float(np.asarray(cols[v])[k]) for v in ("E", "H", "nu_c", "nu_s")},
+                  "points_above_target": [
+                      {v: round(float(np.asarray(cols[v])[i]), 6) for v in ("E", "H", "nu_c", "nu_s")}
+                      | {"floor_percent": round(float(fl[i]), 4)} for i in np.flatnonzero(bad)[:200]]}
+    return res

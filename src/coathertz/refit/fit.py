@@ -134,3 +134,23 @@ def error_stats(err_percent: np.ndarray) -> dict[str, float]:
 
 def summarise(errs: Mapping[str, np.ndarray]) -> dict[str, dict[str, float]]:
     return {q: error_stats(e) for q, e in errs.items()}
+
+
+def single_alpha_floor(bar_of_alpha: Callable[[np.ndarray], np.ndarray], log_bar_exact: np.ndarray,
+                       bounds: tuple[float, float] = (1e-3, 1e3), n_scan: int = 400) -> np.ndarray:
+    """The smallest |err| [%] that *any* alpha in ``bounds`` achieves at each point.
+
+    Zero where some alpha reproduces the exact bar (the predicted bar crosses it as alpha is
+    scanned: fig 4's inverted alpha exists); otherwise the closest approach on the scan. This
+    is the structural limit of the one-alpha form of eqs (1), (17), (18), independent of how
+    alpha is fitted. ``bar_of_alpha(alpha)`` takes an ``(n, n_scan)`` array.
+    """
+    y = np.asarray(log_bar_exact, dtype=float)
+    grid = np.geomspace(bounds[0], bounds[1], n_scan)
+    with np.errstate(all="ignore"):
+        r = np.log(bar_of_alpha(np.broadcast_to(grid, (len(y), n_scan)))) - y[:, None]
+    r = np.where(np.isfinite(r), r, np.inf)
+    s = np.sign(r)
+    crosses = np.any(s[:, :-1] * s[:, 1:] <= 0, axis=1)
+    floor = 100.0 * np.expm1(np.min(np.abs(r), axis=1))
+    return np.where(crosses, 0.0, floor)

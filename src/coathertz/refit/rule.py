@@ -68,6 +68,8 @@ class RefitRule:
         surfaces = {c: {q: Surface.from_dict(d) for q, d in qs.items()}
                     for c, qs in self.data["surfaces"].items()}
         object.__setattr__(self, "_surfaces", surfaces)
+        direct = {q: Surface.from_dict(d) for q, d in self.data.get("direct", {}).get("surfaces", {}).items()}
+        object.__setattr__(self, "_direct", direct)
 
     # -- surfaces ----------------------------------------------------------------------
     def model(self, config: str) -> M.AlphaModel:
@@ -95,6 +97,20 @@ class RefitRule:
         if body.material.is_rigid:
             return float(self.alpha_rigid(quantity, H, nu_c)[0])
         return float(self.alpha(quantity, body.modulus_ratio, H, nu_c, body.material.nu)[0])
+
+    @property
+    def has_direct(self) -> bool:
+        return "direct" in self.data
+
+    def direct_bar(self, quantity: str, E, H, nu_c=0.3, nu_s=0.3) -> np.ndarray:
+        """The second closed form (:mod:`coathertz.refit.direct`): bars of a rigid indenter on a
+        coated elastic half-space, fitted directly (no eq 17)."""
+        from coathertz.refit import direct
+
+        if not self.has_direct:
+            raise CoatHertzError(f"the refit data {self.source!r} has no direct fit")
+        q = M.check_quantity(quantity)
+        return np.exp(direct.log_bar(self._direct[q], q, E, H, nu_c, nu_s))  # type: ignore[attr-defined]
 
     # -- bounds ------------------------------------------------------------------------
     def in_range(self, config: str, E=1.0, H=1.0, nu_c=0.3, nu_s=0.3, rho=1.0) -> bool:

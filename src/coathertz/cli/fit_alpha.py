@@ -1,0 +1,190 @@
+"""``coathertz fit-alpha``: regenerate the refitted alpha data file from a stored sweep.
+
+Two ways in:
+
+* ``--sweep FILE``: refit from an exported sweep (JSON, e.g. the packaged
+  ``coathertz/data/alpha_refit_sweep.json``); no solver runs. This is how the shipped
+  coefficients are reproduced (``--check`` compares them).
+* otherwise: design the training and validation points, solve them with ``--method``
+  (circular; default ``axisym``, the exact axisymmetric method) and the FFT (ellipses) through
+  the result store ``--store`` (reusing stored results), export the sweep (``--export-sweep``),
+  then fit.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+from pathlib import Path
+
+NAME = "fit-alpha"
+HELP = "refit the extended-Hertz alpha (issue 10) from a stored sweep; writes the refit data file"
+
+SWEEP_FORMAT = "coathertz-refit-sweep/1"
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--sweep", type=Path, help="refit from this exported sweep (JSON) instead of solving")
+    parser.add_argument("--method", default="axisym", help="method for the circular sweeps (default axisym)")
+    parser.add_argument("--method-settings", default="{}", help="JSON settings of --method")
+    parser.add_argument("--ellipse-n", type=int, default=128, help="FFT grid (n x n) for the ellipse sweep")
+    parser.add_argument("--store", type=Path, default=Path("runs/refit/store.sqlite"),
+                        help="result store of the sweeps (default runs/refit/store.sqlite)")
+    for cfg, tr, va in (("elastic", 2000, 600), ("rigid", 400, 200), ("ellipse", 250, 120)):
+        parser.add_argument(f"--train-{cfg}", type=int, default=tr, help=f"{cfg} training points (+3^d box)")
+        parser.add_argument(f"--valid-{cfg}", type=int, default=va, help=f"{cfg} validation points")
+    parser.add_argument("--workers", type=int, default=1, help="worker processes for the solvers")
+    parser.add_argument("--export-sweep", type=Path, help="write the sweep (JSON) here")
+    parser.add_argument("--out", type=Path, help="write the data file here (default: print the summary only)")
+    parser.add_argument("--check", type=Path,
+                        help="compare the fitted coefficients with this data file; exit 1 if they differ")
+
+
+def load_sweep(path: Path) -> tuple[dict, dict]:
+    from coathertz.errors import CoatHertzError
+
+    d = json.loads(Path(path).read_text())
+    if d.get("format") != SWEEP_FORMAT:
+        raise CoatHertzError(f"{path}: not a refit sweep (format {d.get('format')!r}, "
+                             f"expected {SWEEP_FORMAT!r})")
+    cols = {k: [float("nan") if v is None else v for v in col] for k, col in d["columns"].items()}
+    return cols, d.get("provenance", {})
+
+
+def export_sweep(path: Path, table: dict, provenance: dict) -> None:
+    import math
+
+    def clean(v):
+        if isinstance(v, float):
+            return None if math.isnan(v) else float(f"{v:.12g}")
+        return v
+
+    cols = {k: [clean(v) for v in col] for k, col in table.items() if k != "failed"}
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    Path(path).write_text(json.dumps({"format": SWEEP_FORMAT, "provenance": provenance, "columns": cols},
+                                     separators=(",", ":")))
+
+
+def solve_sweep(args) -> tuple[dict, dict]:
+    from coathertz.methods import get_method
+    from coathertz.refit import sweep as S
+    from coathertz.store import ResultStore, code_version
+
+    settings = json.loads(args.method_settings)
+    circ = get_method(args.method, **settings)
+    ell = get_method("fft", n=args.ellipse_n, keep_fields=False, workers=1)
+    store = ResultStore(args.store)
+    tables, times = [], {}
+    plan = [("elastic", circ), ("rigid", circ), ("ellipse", ell)]
+    for cfg, m in plan:
+        pts = (S.design(cfg, getattr(args, f"train_{cfg}"))
+               + S.design(cfg, getattr(args, f"valid_{cfg}"), "valid"))
+        t0 = time.perf_counter()
+        tab = S.collect(pts, m, store, workers=args.workers, progress=True, desc=f"refit {cfg}")
+        times[cfg] = round(time.perf_counter() - t0, 1)
+        if tab["failed"]:
+            print(f"fit-alpha: {len(tab['failed'])} {cfg} case(s) failed and are left out; first: "
+                  f"{tab['failed'][0]}", file=sys.stderr)
+        tables.append(tab)
+    store.close()
+    table = {k: [v for t in tables for v in t[k]] for k in tables[0] if k != "failed"}
+    prov = {
+        "code_version": code_version(),
+        "circular_method": {"name": circ.name, "settings": dict(circ.settings())},
+        "ellipse_method": {"name": ell.name, "settings": dict(ell.settings())},
+        "solve_seconds": times,
+        "created_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
+        "store": str(args.store),
+    }
+    return table, prov
+
+
+def compare(new: dict, old: dict) -> float:
+    """Largest |difference| of alpha predicted by two data files on a fixed probe grid (relative)."""
+    import numpy as np
+
+    from coathertz.refit.rule import RefitRule
+
+    a, b = RefitRule(new), RefitRule(old)
+    E = np.geomspace(0.1, 10, 9)[:, None, None]
+    H = np.geomspace(1e-3, 10, 13)[None, :, None]
+    nu = np.array([0.0, 0.25, 0.49])[None, None, :]
+    worst = 0.0
+    for cfg in new["surfaces"]:
+        if cfg not in old["surfaces"]:
+            return float("inf")
+        for q in new["surfaces"][cfg]:
+            if cfg == "ellipse":
+                from coathertz.refit import ellipse as EL
+
+                x = EL.log_correction(a.ellipse_surfaces(), q, 2.0, H.ravel(), 3.0)
+                y = EL.log_correction(b.ellipse_surfaces(), q, 2.0, H.ravel(), 3.0)
+                worst = max(worst, float(np.max(np.abs(x - y))))
+                continue
+            ma, mb = a.model(cfg), b.model(cfg)
+            x = ma.alpha(q, E, H, nu, 0.3) if cfg == "elastic" else ma.alpha(q, None, H, nu)
+            y = mb.alpha(q, E, H, nu, 0.3) if cfg == "elastic" else mb.alpha(q, None, H, nu)
+            worst = max(worst, float(np.max(np.abs(x / y - 1))))
+    return worst
+
+
+def run(args: argparse.Namespace) -> int:
+    from coathertz.refit.build import build
+
+    if args.sweep:
+        table, prov = load_sweep(args.sweep)
+        prov = {**prov, "sweep_file": args.sweep.name}
+    else:
+        table, prov = solve_sweep(args)
+        if args.export_sweep:
+            export_sweep(args.export_sweep, table, prov)
+            print(f"sweep written to {args.export_sweep} ({len(table['H'])} points)")
+    prov["command"] = "coathertz fit-alpha " + " ".join(sys.argv[2:]) if sys.argv[1:2] == [NAME] else NAME
+    data = build(table, provenance=prov)
+    print(summary(data))
+    if args.out:
+        args.out.parent.mkdir(parents=True, exist_ok=True)
+        args.out.write_text(json.dumps(data, indent=1))
+        print(f"data file written to {args.out}")
+    if args.check:
+        old = json.loads(args.check.read_text())
+        diff = compare(data, old)
+        ok = diff < 1e-6
+        print(f"check against {args.check}: largest relative difference of alpha {diff:.2e} "
+              f"({'matches' if ok else 'DIFFERS'})")
+        return 0 if ok else 1
+    return 0
+
+
+def summary(data: dict) -> str:
+    """Table of fit and validation errors next to the paper's rule."""
+    from coathertz.cli._common import format_table
+
+    rows = []
+    for cfg, qs in data["validation_error"].items():
+        for q, v in qs.items():
+            p = data["paper_error"].get(cfg, {}).get(q, {})
+            f = data["fit_error"][cfg][q]
+            rows.append([cfg, q, str(v["n"]), f"{f['max']:.3f}", f"{v['max']:.3f}", f"{v['p99']:.3f}",
+                         f"{p.get('max', float('nan')):.2f}", f"{p.get('p99', float('nan')):.2f}"])
+    for q, v in data.get("direct", {}).get("validation_error", {}).items():
+        f = data["direct"]["fit_error"][q]
+        rows.append(["elastic (direct form)", q, str(v["n"]), f"{f['max']:.3f}", f"{v['max']:.3f}",
+                     f"{v['p99']:.3f}", "", ""])
+    head = ["config", "quantity", "n valid", "train max %", "valid max %", "valid p99 %",
+            "paper max %", "paper p99 %"]
+    text = format_table(head, rows)
+    floors = []
+    for cfg, qs in data.get("single_alpha_floor", {}).items():
+        for q, v in qs.items():
+            if v["n_above_target"]:
+                w = ", ".join(f"{k} = {x:.3g}" for k, x in v["worst"].items())
+                floors.append(f"  {cfg} {q}: {v['n_above_target']} of {v['n']} points beyond "
+                              f"{v['target_percent']} % for every alpha; worst {v['max_percent']:.2f} % "
+                              f"at {w}")
+    if floors:
+        text += ("\nwhere no single alpha reaches the target (one-alpha structure, eqs 17-18):\n"
+                 + "\n".join(floors))
+    return text
