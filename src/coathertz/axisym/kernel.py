@@ -1,0 +1,183 @@
+"""Surface compliance of the contacting pair in Hankel space and its decaying correction ``M``.
+
+For a homogeneous half-space the surface normal displacement due to an axisymmetric pressure
+with Hankel transform ``P(k) = int_0^inf p(r) J0(k r) r dr`` is
+``u(r) = int_0^inf C(k) P(k) J0(k r) k dk`` with ``C(k) = 2 / (E* k)`` (eq 14). A coated body
+(coating of thickness ``h`` on a substrate) has
+
+.. math::  C(k) = \\frac{2}{E_c^* k} F(k h),   F(0) = E_c^*/E_s^*,   F(\\infty) = 1,
+
+the *layer factor* ``F`` of eq (13) (Nogi & Kato 1997) for a bonded coating. The two bodies'
+compliances add, so the pair has
+
+.. math::  C(k) = \\frac{2}{E_{ref} k} \\bigl(1 + M(k)\\bigr),\\qquad
+           \\frac{1}{E_{ref}} = \\sum_i \\frac{1 - \\nu_i^2}{E_i}\\ (\\text{top material of body } i),
+           \\qquad M(k) = E_{ref} \\sum_i \\frac{1-\\nu_i^2}{E_i} \\bigl(F_i(k h_i) - 1\\bigr),
+
+with ``E_ref`` the ``E*`` of eq (2) with every coating taken as a half-space. ``M`` is bounded
+(``M(0) = E_ref/E_s - 1`` finite, ``-1`` on a rigid substrate) and decays like
+``(k h)^2 exp(-2 k h)``: the homogeneous part ``2/(E_ref k)`` is handled exactly by the Abel
+route (:mod:`coathertz.axisym.solver`) and only ``M`` is integrated numerically.
+
+Layer factors (``t = k h``, ``theta = exp(-2 t)``, ``eps = 3 - 4 nu_c``):
+
+* bonded, elastic substrate: eq (13),
+  ``F = (1 + 4 t kappa theta - lam kappa theta^2) / (1 - (lam + kappa + 4 kappa t^2) theta
+  + lam kappa theta^2)``;
+* bonded, rigid substrate (eq 13 with ``mu = 0``, ``lam = -eps``, ``kappa = -1/eps``, multiplied
+  through by ``eps e^{2t}``): ``F = (2 eps sinh 2t - 4 t) / (2 eps cosh 2t + 1 + eps^2 + 4 t^2)``;
+  thin layer ``F ~ (1 - 2 nu_c) t / (2 (1 - nu_c)^2)`` (the constrained-modulus Winkler layer,
+  ``u = p h (1 - 2 nu) / (2 G (1 - nu))``), and for ``nu_c = 0.5`` ``F ~ (2/3) t^3`` (the
+  incompressible layer): nothing divides by ``1 - 2 nu``;
+* frictionless, rigid substrate: ``F = (cosh 2t - 1) / (sinh 2t + 2 t)``, independent of ``nu_c``;
+  thin layer ``F ~ t/2``, i.e. ``u = p h / E_c*`` (laterally free layer);
+* frictionless, elastic substrate: see :func:`layer_factor_frictionless`.
+
+All forms are evaluated with ``exp(-2t)`` only (no overflow for large ``t``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from coathertz.case import ContactCase
+from coathertz.errors import CoatHertzError
+from coathertz.materials import Body, Material
+
+INTERFACES = ("bonded", "frictionless")
+
+LayerFactor = Callable[[np.ndarray], np.ndarray]
+
+
+def _dundurs(coating: Material, substrate: Material) -> tuple[float, float]:
+    """``lam`` and ``kappa`` of eq (13) for an elastic substrate."""
+    nu_c, nu_s = coating.nu, substrate.nu
+    mu = coating.E * (1.0 + nu_s) / (substrate.E * (1.0 + nu_c))  # eq (13): Gc/Gs
+    lam = 1.0 - 4.0 * (1.0 - nu_c) / (1.0 + mu * (3.0 - 4.0 * nu_s))  # eq (13)
+    kappa = (mu - 1.0) / (mu + 3.0 - 4.0 * nu_c)  # eq (13)
+    return lam, kappa
+
+
+def layer_factor_bonded(coating: Material, substrate: Material) -> LayerFactor:
+    """``F(t)`` of a coating perfectly bonded to ``substrate`` (rigid allowed), eq (13)."""
+    if substrate.is_rigid:
+        eps = 3.0 - 4.0 * coating.nu
+
+        def F_rigid(t: np.ndarray) -> np.ndarray:
+            th = np.exp(-2.0 * t)
+            # (2 eps sinh 2t - 4t) e^{-2t} / ((2 eps cosh 2t + 1 + eps^2 + 4t^2) e^{-2t})
+            num = eps * (1.0 - th * th) - 4.0 * t * th
+            den = eps * (1.0 + th * th) + (1.0 + eps * eps + 4.0 * t * t) * th
+            # thin layers: the numerator cancels (eps - 1 = 2 (1 - 2 nu)); series for t < 0.1
+            small = t < 0.1
+            if np.any(small):
+                ts = t[small]
+                # 2 eps sinh 2t - 4t = 4 (eps - 1) t + sum_{j>=1} 2 eps (2t)^(2j+1)/(2j+1)!
+                x = 2.0 * ts
+                ser = 4.0 * (eps - 1.0) * ts
+                term = x
+                for j in range(1, 9):
+                    term = term * x * x / ((2 * j) * (2 * j + 1))
+                    ser = ser + 2.0 * eps * term
+                num = num.copy()
+                num[small] = ser * th[small]
+            return num / den
+
+        return F_rigid
+
+    lam, kappa = _dundurs(coating, substrate)
+    lk = lam * kappa
+
+    def F_elastic(t: np.ndarray) -> np.ndarray:
+        th = np.exp(-2.0 * t)
+        num = 1.0 + 4.0 * t * kappa * th - lk * th * th  # eq (13), numerator
+        den = 1.0 - (lam + kappa + 4.0 * kappa * t * t) * th + lk * th * th  # eq (13)
+        return num / den
+
+    return F_elastic
+
+
+def layer_factor_frictionless(coating: Material, substrate: Material) -> LayerFactor:
+    """``F(t)`` of a coating resting on ``substrate`` without friction (rigid allowed).
+
+    Rigid substrate: ``F = (cosh 2t - 1) / (sinh 2t + 2t)`` (module docstring).
+    """
+    if substrate.is_rigid:
+
+        def F_rigid(t: np.ndarray) -> np.ndarray:
+            th = np.exp(-2.0 * t)
+            # times 2 e^{-2t}: cosh 2t - 1 -> (1 - th)^2, sinh 2t + 2t -> 1 - th^2 + 4 t th
+            return (1.0 - th) ** 2 / (1.0 - th * th + 4.0 * t * th)
+
+        return F_rigid
+    raise CoatHertzError("axisym: frictionless interface on an elastic substrate is not implemented yet")
+
+
+def body_layer_factor(body: Body, interface: str) -> LayerFactor | None:
+    """The layer factor of a coated ``body``, ``None`` if it is homogeneous (``F = 1``)."""
+    if not body.is_coated:
+        return None
+    coat = body.coating.material
+    if interface == "bonded":
+        return layer_factor_bonded(coat, body.material)
+    if interface == "frictionless":
+        return layer_factor_frictionless(coat, body.material)
+    raise CoatHertzError(f"interface must be one of {INTERFACES}, got {interface!r}")
+
+
+def top_compliance(body: Body) -> float:
+    """``(1 - nu^2)/E`` of the material at the body's surface (coating if coated), 0 if rigid."""
+    return body.coating.material.compliance if body.is_coated else body.material.compliance
+
+
+@dataclass(frozen=True)
+class PairCompliance:
+    """``C(k) = 2 (1 + M(k)) / (E_ref k)`` of the two bodies of a case (module docstring).
+
+    Attributes
+    ----------
+    E_ref
+        ``E*`` of eq (2) with the coatings as half-spaces [Pa] (``C`` at large ``k``).
+    terms
+        ``(weight_i, F_i, h_i)`` per coated body: ``M(k) = sum_i weight_i (F_i(k h_i) - 1)``.
+    """
+
+    E_ref: float
+    terms: tuple[tuple[float, LayerFactor, float], ...]
+
+    @property
+    def h_min(self) -> float:
+        """Thinnest coating [m] (``inf`` if none): sets the decay rate of ``M``."""
+        return min((h for _, _, h in self.terms), default=np.inf)
+
+    def M(self, k: np.ndarray) -> np.ndarray:
+        """The decaying correction ``M(k)`` (dimensionless), ``k`` in 1/m."""
+        k = np.asarray(k, dtype=float)
+        out = np.zeros_like(k)
+        for w, F, h in self.terms:
+            out += w * (F(k * h) - 1.0)
+        return out
+
+    def M0(self) -> float:
+        """``M(0)``: the long-wavelength (substrate) limit."""
+        return float(self.M(np.zeros(1))[0])
+
+
+def pair_compliance(case: ContactCase, interface: str = "bonded") -> PairCompliance:
+    """The pair compliance of ``case`` (both bodies; a rigid body adds nothing)."""
+    if interface not in INTERFACES:
+        raise CoatHertzError(f"interface must be one of {INTERFACES}, got {interface!r}")
+    comps = [top_compliance(b) for b in (case.body1, case.body2)]
+    total = sum(comps)
+    if total <= 0:
+        raise CoatHertzError("at least one body must be elastic (both are rigid)")
+    E_ref = 1.0 / total
+    terms = []
+    for b, c in zip((case.body1, case.body2), comps, strict=True):
+        F = body_layer_factor(b, interface)
+        if F is not None:
+            terms.append((E_ref * c, F, b.coating.h))
+    return PairCompliance(E_ref, tuple(terms))

@@ -1,0 +1,168 @@
+"""The exact axisymmetric method: :class:`AxisymMethod` (a :class:`coathertz.methods.Method`)."""
+
+from __future__ import annotations
+
+import math
+import time
+import warnings
+from collections.abc import Mapping, Sequence
+from dataclasses import asdict, dataclass
+from typing import Any, ClassVar
+
+import numpy as np
+
+from coathertz import errors
+from coathertz.axisym.kernel import INTERFACES, pair_compliance
+from coathertz.axisym.solver import XiRule, displacement, peak_pressure, pressure, solve_load
+from coathertz.case import ContactCase
+from coathertz.errors import CoatHertzError
+from coathertz.results import ContactResult
+
+ModelValidityWarning = getattr(errors, "ModelValidityWarning", UserWarning)
+
+#: a/R above which the half-space (small-strain) model is flagged.
+VALIDITY_A_OVER_R = 0.1
+
+
+def default_modes(tau: float, c_modes: float = 8.0, n_min: int = 16, n_max: int = 160) -> int:
+    """Number of Legendre modes for thickness ratio ``tau = h_min / a``: ``c_modes / sqrt(tau)``
+    (the boundary layer of width ~h at the contact edge needs ``N^2 ~ a/h``), rounded up to a
+    multiple of 8 (so that cases share cached Bessel tables) and clipped to ``[n_min, n_max]``."""
+    if not math.isfinite(tau):
+        return n_min
+    n = math.ceil(c_modes / math.sqrt(max(tau, 1e-12)) / 8.0) * 8
+    return int(min(max(n, n_min), n_max))
+
+
+@dataclass(frozen=True)
+class AxisymMethod:
+    """Exact (semi-analytical) frictionless axisymmetric contact on layered bodies.
+
+    Parameters
+    ----------
+    interface
+        ``bonded`` (eq 13, the paper's model) or ``frictionless`` coating/substrate interface.
+    n_modes
+        Legendre modes ``P_0, P_2, ..., P_{2N-2}`` of the auxiliary function; ``None``: automatic
+        from ``h/a`` (:func:`default_modes` with ``c_modes``).
+    c_modes
+        Constant of the automatic rule ``N = c_modes / sqrt(h/a)``.
+    order, panel
+        Gauss--Legendre nodes per panel and uniform panel width of the ``xi = k a`` quadrature.
+    decay
+        The ``xi`` integral stops at ``decay * a / h_min`` (``M`` ~ ``t^2 exp(-2 t)`` < 1e-18 there).
+    rtol
+        Tolerance on ``|log W(a) - log W|`` of the load iteration.
+    keep_fields
+        Return ``r``, ``pressure`` and ``u_z`` profiles in ``ContactResult.fields``.
+    """
+
+    interface: str = "bonded"
+    n_modes: int | None = None
+    c_modes: float = 8.0
+    order: int = 16
+    panel: float = 3.0
+    decay: float = 24.0
+    rtol: float = 1e-12
+    keep_fields: bool = True
+    name: str = "axisym"
+
+    cost: ClassVar[str] = "cheap"
+    marker: ClassVar[str] = "D"
+    label: ClassVar[str] = "exact axisymmetric"
+    reference_rank: ClassVar[int] = 30
+    source_packages: ClassVar[tuple[str, ...]] = ("coathertz.axisym",)
+
+    def __post_init__(self) -> None:
+        if self.interface not in INTERFACES:
+            raise CoatHertzError(f"interface must be one of {INTERFACES}, got {self.interface!r}")
+        if self.n_modes is not None and not (isinstance(self.n_modes, int) and 2 <= self.n_modes <= 400):
+            raise CoatHertzError(f"n_modes must be None or an integer in [2, 400], got {self.n_modes!r}")
+        if not (isinstance(self.c_modes, float | int) and 1.0 <= self.c_modes <= 100.0):
+            raise CoatHertzError(f"c_modes must be in [1, 100], got {self.c_modes!r}")
+        if not (isinstance(self.order, int) and 4 <= self.order <= 64):
+            raise CoatHertzError(f"order must be an integer in [4, 64], got {self.order!r}")
+        if not (isinstance(self.panel, float | int) and 0.1 <= self.panel <= 20.0):
+            raise CoatHertzError(f"panel must be in [0.1, 20], got {self.panel!r}")
+        if not (isinstance(self.decay, float | int) and 5.0 <= self.decay <= 100.0):
+            raise CoatHertzError(f"decay must be in [5, 100], got {self.decay!r}")
+        if not (isinstance(self.rtol, float) and 0.0 < self.rtol < 1e-3):
+            raise CoatHertzError(f"rtol must satisfy 0 < rtol < 1e-3, got {self.rtol!r}")
+
+    # registry metadata --------------------------------------------------------------------------
+    @classmethod
+    def settings_for(cls, resolution: str) -> dict:
+        """Constructor keyword arguments at a study resolution: the defaults everywhere (the method
+        is converged to ~1e-9 at default settings and costs milliseconds)."""
+        if resolution not in ("tiny", "quick", "full"):
+            raise CoatHertzError(f"resolution must be one of ('tiny', 'quick', 'full'), got {resolution!r}")
+        return {}
+
+    # Method protocol ---------------------------------------------------------------------------
+    def settings(self) -> Mapping[str, Any]:
+        d = asdict(self)
+        for k in ("name", "keep_fields"):
+            d.pop(k)
+        return d
+
+    def supports(self, case: ContactCase) -> bool:
+        """Circular point contacts (``Rx = Ry`` finite): the problem is axisymmetric."""
+        return case.is_circular and math.isfinite(case.Rx)
+
+    def _rule(self) -> XiRule:
+        return XiRule(order=self.order, panel=float(self.panel))
+
+    def solve(self, case: ContactCase) -> ContactResult:
+        """Solve one circular case under load control; raises for elliptical cases."""
+        if not isinstance(case, ContactCase):
+            raise CoatHertzError(f"case must be a ContactCase, got {case!r}")
+        if not self.supports(case):
+            raise CoatHertzError(
+                "axisym: the case is not axisymmetric (relative radii "
+                f"Rx = {case.Rx * 1e3:.4g} mm, Ry = {case.Ry * 1e3:.4g} mm differ); "
+                "the exact axisymmetric method needs a circular contact (use fft)"
+            )
+        t0 = time.perf_counter()
+        pc = pair_compliance(case, self.interface)
+        R = case.R
+        rule = self._rule()
+        if self.n_modes is not None:
+            n_modes = self.n_modes
+        else:
+            # h/a at the Hertz radius of the stiffer limit (the smaller a, the larger h/a)
+            a_est = min(case.a0s, case.a0c) if math.isfinite(case.a0s) and case.a0s > 0 else case.a0c
+            n_modes = default_modes(pc.h_min / max(a_est, 1e-300) * 0.9, self.c_modes)
+        sol, iters = solve_load(pc, R, case.W, n_modes, rule, self.decay, self.rtol)
+        p0, r_p0 = peak_pressure(pc, sol)
+        meta: dict[str, Any] = {
+            "r_p0": r_p0,
+            "n_modes": n_modes,
+            "n_xi": sol.n_xi,
+            "iterations": iters,
+            "h_over_a": pc.h_min / sol.a if math.isfinite(pc.h_min) else math.inf,
+            "E_ref": pc.E_ref,
+            "interface": self.interface,
+            "settings": dict(self.settings()),
+        }
+        if sol.a / R > VALIDITY_A_OVER_R:
+            msg = (f"a/R = {sol.a / R:.3g} > {VALIDITY_A_OVER_R}: the half-space, small-strain "
+                   "model behind every method is outside its range")
+            warnings.warn(msg, ModelValidityWarning, stacklevel=2)
+            meta["validity"] = msg
+        fields: dict[str, np.ndarray] = {}
+        if self.keep_fields:
+            rho_in = 0.5 * (1.0 - np.cos(np.linspace(0.0, math.pi, 121)))
+            rho = np.concatenate([rho_in, np.linspace(1.0, 3.0, 41)[1:]])
+            p = np.zeros_like(rho)
+            p[: rho_in.size] = pressure(pc, sol, rho_in)
+            fields = {
+                "r": rho * sol.a,
+                "pressure": p,
+                "u_z": displacement(pc, sol, rho, R, rule, self.decay),
+            }
+        meta["wall_time"] = time.perf_counter() - t0
+        return ContactResult(self.name, sol.delta, sol.a, p0, case.W, sol.a, sol.a, meta, fields)
+
+    def solve_many(self, cases: Sequence[ContactCase]) -> list[ContactResult]:
+        """Solve cases one after another (Bessel tables are shared through a cache)."""
+        return [self.solve(c) for c in cases]
