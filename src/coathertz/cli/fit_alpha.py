@@ -35,6 +35,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     for cfg, tr, va in (("elastic", 2000, 600), ("rigid", 400, 200), ("ellipse", 250, 120)):
         parser.add_argument(f"--train-{cfg}", type=int, default=tr, help=f"{cfg} training points (+3^d box)")
         parser.add_argument(f"--valid-{cfg}", type=int, default=va, help=f"{cfg} validation points")
+    for cfg, n in (("elastic", 24), ("rigid", 12)):
+        parser.add_argument(f"--thin-valid-{cfg}", type=int, default=n,
+                            help=f"{cfg} validation points in the thin band H in [0.001, 0.01)")
+    parser.add_argument("--reuse-sweep", action="append", default=[], metavar="FILE:CONFIG[,CONFIG]",
+                        help="take the rows of these configurations from an exported sweep instead of "
+                             "solving (e.g. runs/refit/fft128_sweep.json:ellipse)")
+    parser.add_argument("--configs", default="elastic,rigid,ellipse",
+                        help="configurations to solve (default elastic,rigid,ellipse)")
     parser.add_argument("--workers", type=int, default=1, help="worker processes for the solvers")
     parser.add_argument("--export-sweep", type=Path, help="write the sweep (JSON) here")
     parser.add_argument("--out", type=Path, help="write the data file here (default: print the summary only)")
@@ -76,11 +84,25 @@ def solve_sweep(args) -> tuple[dict, dict]:
     circ = get_method(args.method, **settings)
     ell = get_method("fft", n=args.ellipse_n, keep_fields=False, workers=1)
     store = ResultStore(args.store)
-    tables, times = [], {}
-    plan = [("elastic", circ), ("rigid", circ), ("ellipse", ell)]
+    tables, times, reused = [], {}, {}
+    for spec in args.reuse_sweep:
+        path, _, cfgs = spec.rpartition(":")
+        cols, prov = load_sweep(Path(path))
+        for cfg in cfgs.split(","):
+            tab = {k: list(v) for k, v in S.select(cols, config=cfg).items()}
+            tab["failed"] = []
+            tables.append(tab)
+            reused[cfg] = {"file": Path(path).name, "rows": len(tab["H"]),
+                           "method": prov.get("ellipse_method" if cfg == "ellipse" else "circular_method"),
+                           "code_version": prov.get("code_version")}
+    wanted = set(args.configs.split(","))
+    plan = [(c, m) for c, m in (("elastic", circ), ("rigid", circ), ("ellipse", ell))
+            if c not in reused and c in wanted]
     for cfg, m in plan:
         pts = (S.design(cfg, getattr(args, f"train_{cfg}"))
                + S.design(cfg, getattr(args, f"valid_{cfg}"), "valid"))
+        if cfg in S.THIN:
+            pts += S.design(cfg, getattr(args, f"thin_valid_{cfg}"), "valid", seed=3, box=S.THIN[cfg])
         t0 = time.perf_counter()
         tab = S.collect(pts, m, store, workers=args.workers, progress=True, desc=f"refit {cfg}")
         times[cfg] = round(time.perf_counter() - t0, 1)
@@ -89,12 +111,17 @@ def solve_sweep(args) -> tuple[dict, dict]:
                   f"{tab['failed'][0]}", file=sys.stderr)
         tables.append(tab)
     store.close()
+    if not tables:
+        from coathertz.errors import CoatHertzError
+
+        raise CoatHertzError("fit-alpha: nothing to fit (check --configs and --reuse-sweep)")
     table = {k: [v for t in tables for v in t[k]] for k in tables[0] if k != "failed"}
     prov = {
         "code_version": code_version(),
         "circular_method": {"name": circ.name, "settings": dict(circ.settings())},
         "ellipse_method": {"name": ell.name, "settings": dict(ell.settings())},
         "solve_seconds": times,
+        "reused": reused,
         "created_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
         "store": str(args.store),
     }

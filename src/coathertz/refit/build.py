@@ -131,7 +131,7 @@ def build(table: Mapping, *, settings: Mapping[str, FitSettings] | None = None,
         out["surfaces"][config] = {q: sf.to_dict() for q, sf in surfs.items()}
         out["settings"][config] = s.to_dict()
         out["fit_error"][config] = fit_err
-        out["ranges"][config] = _ranges(config, tr)
+        out["ranges"][config] = _ranges(config, select(table, config=config))
         if len(va["H"]):
             errs = _circ_errs(model, va)
             out["validation_error"][config] = {q: error_stats(e) for q, e in errs.items()}
@@ -172,7 +172,7 @@ def build(table: Mapping, *, settings: Mapping[str, FitSettings] | None = None,
         out["surfaces"]["ellipse"] = {q: sf.to_dict() for q, sf in surfs.items()}
         out["settings"]["ellipse"] = s.to_dict()
         out["fit_error"]["ellipse"] = fit_err
-        out["ranges"]["ellipse"] = _ranges("ellipse", tr)
+        out["ranges"]["ellipse"] = _ranges("ellipse", select(table, config="ellipse"))
         if len(va["H"]):
             errs = {q: 100.0 * (ellipse_bars(models["elastic"], surfs, q, va) / va[f"{q}_bar"] - 1)
                     for q in EL.QUANTITIES}

@@ -11,9 +11,9 @@ changes: instead of the representative curves of Appendix A and the piecewise eq
 
 a Chebyshev-product surface (:class:`~coathertz.refit.surface.Surface`) in
 
-* elastic substrate: :math:`\log_{10} H \in [-3, 1]`, :math:`\log_{10} E \in [-1, 1]`,
+* elastic substrate: :math:`\log_{10} H \in [-2, 1]`, :math:`\log_{10} E \in [-1, 1]`,
   :math:`\nu_c, \nu_s \in [0, 0.5]` (E = Ec*/Es*, H = h/a0s, eq 7a);
-* rigid substrate: :math:`\log_{10} H \in [-3, 1]`, :math:`\nu_c \in [0, 0.5]` (H = h/a0c, 7b).
+* rigid substrate: :math:`\log_{10} H \in [-2, 1]`, :math:`\nu_c \in [0, 0.5]` (H = h/a0c, 7b).
 
 Outside these boxes each variable is clamped, so alpha is held at its boundary value.
 Limits: as H -> 0, alpha H -> 0 and eq (17) gives E1* -> Es* (substrate Hertz); as
@@ -35,7 +35,7 @@ from coathertz.refit.surface import Surface
 
 QUANTITIES = ("a", "delta", "p")
 CONFIGS = ("elastic", "rigid")
-LOG10_H = (-3.0, 1.0)  # H in [0.001, 10]
+LOG10_H = (-2.0, 1.0)  # H in [0.01, 10] (trained); alpha held at its H = 0.01 value below
 LOG10_E = (-1.0, 1.0)  # E in [1/10, 10]
 NU_EPS = 0.01
 #: On a rigid substrate nu_c enters through ``t(nu) = log10(1 + NU_EPS - 2 nu)``: thin layers
