@@ -33,11 +33,12 @@ class FitSettings:
     iterations: int = 40
     reweight: int = 6
     reweight_power: float = 1.0
+    init_from_inverse: bool = False
 
     def to_dict(self) -> dict:
         return {"degrees": list(self.degrees), "cross": [list(c) for c in self.cross], "ridge": self.ridge,
                 "iterations": self.iterations, "reweight": self.reweight,
-                "reweight_power": self.reweight_power}
+                "reweight_power": self.reweight_power, "init_from_inverse": self.init_from_inverse}
 
 
 @dataclass(frozen=True)
@@ -113,6 +114,22 @@ def fit_surface(
 
     c = np.zeros(len(terms))
     c[0] = np.log(alpha0)
+    if settings.init_from_inverse:
+        # start from a sensitivity-weighted least-squares fit of the inverted ln alpha (fig 4)
+        grid = np.geomspace(1e-3, 1e3, 200)
+        with np.errstate(all="ignore"):
+            R = np.stack([resid(np.full(len(y), np.log(g))) for g in grid], axis=1)
+        s_ = np.sign(R)
+        cross = (s_[:, :-1] * s_[:, 1:]) <= 0
+        has = cross.any(axis=1)
+        k = np.argmax(cross, axis=1)
+        la = np.log(grid[k]) + np.log(grid[1] / grid[0]) * R[np.arange(len(y)), k] / (
+            R[np.arange(len(y)), k] - R[np.arange(len(y)), np.minimum(k + 1, len(grid) - 1)])
+        la = np.where(has & np.isfinite(la), la, np.log(alpha0))
+        g = np.abs(sens(la))
+        wt = np.where(has, g / (g + 0.01), 1e-3)
+        A = Phi * np.sqrt(wt)[:, None]
+        c = np.linalg.solve(A.T @ A + 1e-6 * np.eye(len(terms)), A.T @ (la * np.sqrt(wt)))
     w = np.ones(len(y))
     for _ in range(settings.reweight + 1):
         c = _gauss_newton(Phi, c, resid, sens, w / w.sum() * len(w), settings.ridge, settings.iterations)

@@ -13,7 +13,7 @@ a Chebyshev-product surface (:class:`~coathertz.refit.surface.Surface`) in
 
 * elastic substrate: :math:`\log_{10} H \in [-2, 1]`, :math:`\log_{10} E \in [-1, 1]`,
   :math:`\nu_c, \nu_s \in [0, 0.5]` (E = Ec*/Es*, H = h/a0s, eq 7a);
-* rigid substrate: :math:`\log_{10} H \in [-2, 1]`, :math:`\nu_c \in [0, 0.5]` (H = h/a0c, 7b).
+* rigid substrate: :math:`\log_{10} H \in [-3, 1]`, :math:`\nu_c \in [0, 0.5]` (H = h/a0c, 7b).
 
 Outside these boxes each variable is clamped, so alpha is held at its boundary value.
 Limits: as H -> 0, alpha H -> 0 and eq (17) gives E1* -> Es* (substrate Hertz); as
@@ -49,7 +49,7 @@ VARIABLES = {
 }
 BOXES = {
     "elastic": (LOG10_H, LOG10_E, NU, NU),
-    "rigid": (LOG10_H, T_NU),
+    "rigid": ((-3.0, 1.0), T_NU),  # rigid substrate: trained down to H = 0.001
 }
 
 
@@ -121,3 +121,21 @@ class AlphaModel:
         E, H, nu_c, nu_s = (a.ravel() for a in np.broadcast_arrays(
             *(np.asarray(v, dtype=float) for v in (E, H, nu_c, nu_s))))
         return bar_from_alpha(q, alpha, E, H, nu_c, nu_s)
+
+    def bars(self, E=None, H=None, nu_c=0.3, nu_s=0.3) -> dict[str, np.ndarray]:
+        """All three bars at once (shares the variables and eq 13's constants): the fast path."""
+        X = variables(self.config, E, H, nu_c, nu_s)
+        if self.config == "rigid":
+            H, nu_c = (a.ravel() for a in np.broadcast_arrays(np.asarray(H, float), np.asarray(nu_c, float)))
+            lam = 4.0 * nu_c - 3.0  # Section 4
+            lam, kappa, scale = lam, 1.0 / lam, 1.0
+        else:
+            E, H, nu_c, nu_s = (a.ravel() for a in np.broadcast_arrays(
+                *(np.asarray(v, dtype=float) for v in (E, H, nu_c, nu_s))))
+            lam, kappa = constants_from_ratio(E, nu_c, nu_s)
+            scale = E
+        out = {}
+        for q in QUANTITIES:
+            alpha = np.exp(self.surfaces[q](X))
+            out[q] = (scale * E1_over_Ec(lam, kappa, alpha, H)) ** EXPONENT[q]
+        return out
