@@ -89,7 +89,6 @@ def solve_sweep(args) -> tuple[dict, dict]:
     settings = json.loads(args.method_settings)
     circ = get_method(args.method, **settings)
     ell = get_method("fft", n=args.ellipse_n, keep_fields=False, workers=1)
-    store = ResultStore(args.store)
     tables, times, reused = [], {}, {}
     for spec in args.reuse_sweep:
         path, _, cfgs = spec.rpartition(":")
@@ -110,13 +109,13 @@ def solve_sweep(args) -> tuple[dict, dict]:
         if cfg in S.THIN:
             pts += S.design(cfg, getattr(args, f"thin_valid_{cfg}"), "valid", seed=3, box=S.THIN[cfg])
         t0 = time.perf_counter()
-        tab = S.collect(pts, m, store, workers=args.workers, progress=True, desc=f"refit {cfg}")
+        with ResultStore(args.store, version=S.method_code_version(m)) as store:
+            tab = S.collect(pts, m, store, workers=args.workers, progress=True, desc=f"refit {cfg}")
         times[cfg] = round(time.perf_counter() - t0, 1)
         if tab["failed"]:
             print(f"fit-alpha: {len(tab['failed'])} {cfg} case(s) failed and are left out; first: "
                   f"{tab['failed'][0]}", file=sys.stderr)
         tables.append(tab)
-    store.close()
     if not tables:
         from coathertz.errors import CoatHertzError
 
@@ -124,6 +123,8 @@ def solve_sweep(args) -> tuple[dict, dict]:
     table = {k: [v for t in tables for v in t[k]] for k in tables[0] if k != "failed"}
     prov = {
         "code_version": code_version(),
+        "method_code_version": {"circular": S.method_code_version(circ),
+                                "ellipse": S.method_code_version(ell)},
         "circular_method": {"name": circ.name, "settings": dict(circ.settings())},
         "ellipse_method": {"name": ell.name, "settings": dict(ell.settings())},
         "solve_seconds": times,
@@ -178,11 +179,12 @@ def run(args: argparse.Namespace) -> int:
     data = build(table, provenance=prov)
     if args.spot_check:
         from coathertz.methods import get_method
+        from coathertz.refit import sweep as S
         from coathertz.refit.sweep import spot_check
         from coathertz.store import ResultStore
 
         m = get_method(args.spot_method, **json.loads(args.spot_settings))
-        with ResultStore(args.store) as store:
+        with ResultStore(args.store, version=S.method_code_version(m)) as store:
             data["spot_checks"] = spot_check(table, m, store, args.spot_check)
     print(summary(data))
     if args.out:
