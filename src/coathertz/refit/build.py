@@ -141,6 +141,14 @@ def build(table: Mapping, *, settings: Mapping[str, FitSettings] | None = None,
                 q: error_stats(100.0 * (paper_bars(config, q, va) / va[f"{q}_bar"] - 1))
                 for q in M.QUANTITIES}
             out["bounds"][config] = _bins(config, va, errs)
+            inside = (va["H"] >= 0.01) & (va["H"] <= 3.0)
+            if config == "elastic":
+                inside &= (va["E"] >= 0.25) & (va["E"] <= 4.0)
+            out.setdefault("validation_error_paper_range", {})[config] = {
+                "range": "H in [0.01, 3]" + (", E in [1/4, 4]" if config == "elastic" else ""),
+                "refit": {q: error_stats(e[inside]) for q, e in errs.items()},
+                "paper": {q: error_stats(100.0 * (paper_bars(config, q, va)[inside]
+                                                  / va[f"{q}_bar"][inside] - 1)) for q in M.QUANTITIES}}
             if config == "elastic":
                 near = np.abs(va["nu_c"] - va["nu_s"]) <= NU_MATCHED
                 out.setdefault("validation_error_nu_matched", {})[config] = {
