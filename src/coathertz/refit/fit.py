@@ -105,9 +105,11 @@ def fit_surface(
     Phi = proto.design(X)
     y = np.asarray(log_bar_exact, dtype=float)
 
+    from coathertz.refit.model import ln_alpha
+
     def resid(z):
         with np.errstate(all="ignore"):
-            return np.log(bar_of_alpha(np.exp(z))) - y
+            return np.log(bar_of_alpha(np.exp(ln_alpha(z)))) - y
 
     def sens(z, h=1e-4):
         return (resid(z + h) - resid(z - h)) / (2 * h)

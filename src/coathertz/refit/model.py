@@ -7,7 +7,8 @@ changes: instead of the representative curves of Appendix A and the piecewise eq
 
 .. math::
 
-    \ln \alpha_q = \sum_k c_{qk} \prod_v T_{i_{kv}}(s_v),
+    \ln \alpha_q = L \tanh(S_q / L), \quad S_q = \sum_k c_{qk} \prod_v T_{i_{kv}}(s_v),
+    \quad L = \ln 10^4,
 
 a Chebyshev-product surface (:class:`~coathertz.refit.surface.Surface`) in
 
@@ -51,6 +52,17 @@ BOXES = {
     "elastic": (LOG10_H, LOG10_E, NU, NU),
     "rigid": ((-3.0, 1.0), T_NU),  # rigid substrate: trained down to H = 0.001
 }
+
+
+#: ln alpha is soft-capped at +-LN_ALPHA_CAP (alpha in (1e-4, 1e4)): where a bar does not depend on
+#: alpha (E near 1, the two Hertz limits) the fit would otherwise let alpha drift to 1e9; the cap is
+#: smooth (tanh) and changes alpha by < 1 % for alpha in [0.05, 20].
+LN_ALPHA_CAP = math.log(1e4)
+
+
+def ln_alpha(z):
+    """The soft cap ``L tanh(z / L)`` applied to a surface value ``z``."""
+    return LN_ALPHA_CAP * np.tanh(np.asarray(z, dtype=float) / LN_ALPHA_CAP)
 
 
 def check_quantity(q: str, allowed=QUANTITIES) -> str:
@@ -109,12 +121,12 @@ class AlphaModel:
     def alpha(self, q: str, E=None, H=None, nu_c=0.3, nu_s=0.3) -> np.ndarray:
         """alpha_q at the (broadcast) inputs, flattened to 1-D."""
         check_quantity(q)
-        return np.exp(self.surfaces[q](variables(self.config, E, H, nu_c, nu_s)))
+        return np.exp(ln_alpha(self.surfaces[q](variables(self.config, E, H, nu_c, nu_s))))
 
     def bar(self, q: str, E=None, H=None, nu_c=0.3, nu_s=0.3) -> np.ndarray:
         """Predicted bar of quantity ``q`` (flattened broadcast shape)."""
         X = variables(self.config, E, H, nu_c, nu_s)
-        alpha = np.exp(self.surfaces[check_quantity(q)](X))
+        alpha = np.exp(ln_alpha(self.surfaces[check_quantity(q)](X)))
         if self.config == "rigid":
             H, nu_c = (np.broadcast_arrays(np.asarray(H, float), np.asarray(nu_c, float)))
             return bar_from_alpha(q, alpha, None, H.ravel(), nu_c.ravel(), None, rigid=True)
@@ -136,6 +148,6 @@ class AlphaModel:
             scale = E
         out = {}
         for q in QUANTITIES:
-            alpha = np.exp(self.surfaces[q](X))
+            alpha = np.exp(ln_alpha(self.surfaces[q](X)))
             out[q] = (scale * E1_over_Ec(lam, kappa, alpha, H)) ** EXPONENT[q]
         return out
