@@ -38,6 +38,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     for cfg, n in (("elastic", 24),):
         parser.add_argument(f"--thin-valid-{cfg}", type=int, default=n,
                             help=f"{cfg} validation points in the thin band H in [0.001, 0.01)")
+    parser.add_argument("--rigid-nu-lines", default="0.47,0.49,0.5",
+                        help="extra rigid-substrate lines at these nu_c (training; validation lines at "
+                             "their midpoints in H), since Sobol points leave nu_c -> 0.5 sparse")
+    parser.add_argument("--line-points", type=int, default=25, help="H values per nu_c line")
     parser.add_argument("--reuse-sweep", action="append", default=[], metavar="FILE:CONFIG[,CONFIG]",
                         help="take the rows of these configurations from an exported sweep instead of "
                              "solving (e.g. runs/refit/fft128_sweep.json:ellipse)")
@@ -106,6 +110,10 @@ def solve_sweep(args) -> tuple[dict, dict]:
     for cfg, m in plan:
         pts = (S.design(cfg, getattr(args, f"train_{cfg}"))
                + S.design(cfg, getattr(args, f"valid_{cfg}"), "valid"))
+        if cfg == "rigid" and args.rigid_nu_lines:
+            nus = [float(x) for x in args.rigid_nu_lines.split(",")]
+            pts += S.design_lines(cfg, nus, args.line_points) + S.design_lines(
+                cfg, nus, args.line_points - 1, "valid", offset=0.5)
         if cfg in S.THIN:
             pts += S.design(cfg, getattr(args, f"thin_valid_{cfg}"), "valid", seed=3, box=S.THIN[cfg])
         t0 = time.perf_counter()

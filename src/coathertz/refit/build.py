@@ -31,7 +31,7 @@ NU_MATCHED = 0.1
 
 DEFAULT_SETTINGS = {
     "elastic": FitSettings((7, 5, 2, 2), ((3, 2), (3, 2)), reweight=0),
-    "rigid": FitSettings((10, 6), (), reweight=0),
+    "rigid": FitSettings((12, 8), (), reweight=0),
     "ellipse": FitSettings((4, 3, 2), ((2, 2),), reweight=0),
     "direct": FitSettings((7, 5, 2, 2), ((3, 2), (3, 2)), ridge=1e-10),
 }
