@@ -128,3 +128,13 @@ def test_ellipse_correction_vanishes_for_circles_and_at_E_1():
     for q in EL.QUANTITIES:
         assert np.all(EL.log_correction(surfs, q, np.array([0.3, 4.0]), 0.5, 1.0) == 0.0)
         assert np.all(EL.log_correction(surfs, q, 1.0, np.array([0.05, 2.0]), 8.0) == 0.0)
+
+
+@pytest.mark.parametrize("q,k", [("a", -1 / 3), ("delta", -2 / 3), ("p", 2 / 3)])
+def test_second_forms_limits_and_continuity(q, k):
+    """The direct and the corrected forms keep both Hertz limits and have no jumps."""
+    for f in (RULE.direct_bar, RULE.corrected_bar):
+        np.testing.assert_allclose(f(q, E_GRID, 1e-9, 0.3, 0.3), 1.0, atol=1e-6)
+        np.testing.assert_allclose(f(q, E_GRID, 1e9, 0.3, 0.3), E_GRID**k, rtol=1e-6)
+        jump = _max_jump(lambda lh, f=f: np.log(f(q, 3.0, 10**lh, 0.2, 0.4)), -5, 3)
+        assert jump < 1e-6, f"largest jump {jump:.2e}"

@@ -169,6 +169,13 @@ def compare(new: dict, old: dict) -> float:
             x = ma.alpha(q, E, H, nu, 0.3) if cfg == "elastic" else ma.alpha(q, None, H, nu)
             y = mb.alpha(q, E, H, nu, 0.3) if cfg == "elastic" else mb.alpha(q, None, H, nu)
             worst = max(worst, float(np.max(np.abs(x / y - 1))))
+    for key in ("direct", "corrected"):  # the second forms: coefficients
+        for q, sd in new.get(key, {}).get("surfaces", {}).items():
+            od = old.get(key, {}).get("surfaces", {}).get(q)
+            if od is None or len(od["coef"]) != len(sd["coef"]):
+                return float("inf")
+            c1, c2 = np.asarray(sd["coef"]), np.asarray(od["coef"])
+            worst = max(worst, float(np.max(np.abs(c1 - c2)) / max(np.max(np.abs(c2)), 1e-300)))
     return worst
 
 
@@ -220,10 +227,11 @@ def summary(data: dict) -> str:
             f = data["fit_error"][cfg][q]
             rows.append([cfg, q, str(v["n"]), f"{f['max']:.3f}", f"{v['max']:.3f}", f"{v['p99']:.3f}",
                          f"{p.get('max', float('nan')):.2f}", f"{p.get('p99', float('nan')):.2f}"])
-    for q, v in data.get("direct", {}).get("validation_error", {}).items():
-        f = data["direct"]["fit_error"][q]
-        rows.append(["elastic (direct form)", q, str(v["n"]), f"{f['max']:.3f}", f"{v['max']:.3f}",
-                     f"{v['p99']:.3f}", "", ""])
+    for key, label in (("direct", "elastic (direct form)"), ("corrected", "elastic (corrected alpha)")):
+        for q, v in data.get(key, {}).get("validation_error", {}).items():
+            f = data[key]["fit_error"][q]
+            rows.append([label, q, str(v["n"]), f"{f['max']:.3f}", f"{v['max']:.3f}", f"{v['p99']:.3f}",
+                         "", ""])
     head = ["config", "quantity", "n valid", "train max %", "valid max %", "valid p99 %",
             "paper max %", "paper p99 %"]
     text = format_table(head, rows)

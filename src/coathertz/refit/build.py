@@ -34,6 +34,7 @@ DEFAULT_SETTINGS = {
     "rigid": FitSettings((12, 8), (), reweight=0),
     "ellipse": FitSettings((4, 3, 2), ((2, 2),), reweight=0),
     "direct": FitSettings((7, 5, 2, 2), ((3, 2), (3, 2)), ridge=1e-10),
+    "corrected": FitSettings((9, 6, 3, 3), ((4, 3), (4, 3)), ridge=1e-9),
 }
 
 #: Bin edges of the validated error table, per configuration: (variable, edges).
@@ -168,6 +169,23 @@ def build(table: Mapping, *, settings: Mapping[str, FitSettings] | None = None,
             d["validation_error"] = {q: error_stats(e) for q, e in errs.items()}
             d["bounds"] = _bins("elastic", va, errs)
         out["direct"] = d
+        s = settings["corrected"]
+        el = models["elastic"]
+        csurf, cerr = {}, {}
+        for q in M.QUANTITIES:
+            base = np.log(el.bar(q, tr["E"], tr["H"], tr["nu_c"], tr["nu_s"]))
+            csurf[q], cerr[q] = DI.fit_corrected(q, tr, base, s)
+        d = {"surfaces": {q: sf.to_dict() for q, sf in csurf.items()}, "settings": s.to_dict(),
+             "fit_error": cerr}
+        if len(va["H"]):
+            errs = {}
+            for q in M.QUANTITIES:
+                lb = np.log(el.bar(q, va["E"], va["H"], va["nu_c"], va["nu_s"]))
+                lb += DI.log_correction(csurf[q], va["E"], va["H"], va["nu_c"], va["nu_s"])
+                errs[q] = 100.0 * np.expm1(lb - np.log(va[f"{q}_bar"]))
+            d["validation_error"] = {q: error_stats(e) for q, e in errs.items()}
+            d["bounds"] = _bins("elastic", va, errs)
+        out["corrected"] = d
     tr, va = select(table, config="ellipse", set="train"), select(table, config="ellipse", set="valid")
     if len(tr["H"]) and "elastic" in models:
         s = settings["ellipse"]

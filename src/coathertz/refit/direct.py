@@ -14,6 +14,9 @@ with :math:`k_a = -1/3`, :math:`k_\delta = -2/3`, :math:`k_p = 2/3` and a clampe
 surface :math:`S_q` fitted by linear least squares. Limits: :math:`H \to 0` gives
 :math:`\bar q \to 1` (substrate Hertz) and :math:`H \to \infty` gives :math:`\bar q \to E^{k_q}`
 (coating Hertz), both approached like :math:`H^{\pm 1}`, as the exact solutions are.
+
+:func:`fit_corrected` is the third form, usually the most accurate: the refit alpha of eqs (17)-(18)
+times ``exp(w(1 - w) C_q)``, a smooth correction with the same vanishing limits.
 """
 
 from __future__ import annotations
@@ -59,3 +62,27 @@ def fit(q: str, cols, settings: FitSettings, reweight: int = 4) -> tuple[Surface
         wt = wt * (r / max(r.max(), 1e-300)) + 1e-3
     surface = Surface(proto.variables, lo, hi, terms, tuple(float(x) for x in c))
     return surface, error_stats(100.0 * np.expm1(A @ c - y))
+
+
+def fit_corrected(q: str, cols, base_log_bar: np.ndarray, settings: FitSettings) -> tuple[Surface, dict]:
+    """The corrected one-alpha form: ``ln bar = ln bar_alpha + w(1 - w) C_q(...)``, i.e. the refit
+    alpha of eqs (17)-(18) times a smooth factor that vanishes in both Hertz limits. ``C_q`` is fitted
+    by linear least squares to the residual ``ln bar_exact - base_log_bar`` of the one-alpha rule."""
+    terms = term_set(settings.degrees, settings.cross or None)
+    lo = tuple(b[0] for b in M.BOXES["elastic"])
+    hi = tuple(b[1] for b in M.BOXES["elastic"])
+    proto = Surface(M.VARIABLES["elastic"], lo, hi, terms, tuple(0.0 for _ in terms))
+    X = M.variables("elastic", cols["E"], cols["H"], cols["nu_c"], cols["nu_s"])
+    w = weight(np.asarray(cols["H"], dtype=float))
+    A = (w * (1 - w))[:, None] * proto.design(X)
+    y = np.log(np.asarray(cols[f"{q}_bar"], dtype=float)) - base_log_bar
+    c = np.linalg.solve(A.T @ A + settings.ridge * np.eye(len(terms)), A.T @ y)
+    surface = Surface(proto.variables, lo, hi, terms, tuple(float(x) for x in c))
+    return surface, error_stats(100.0 * np.expm1(A @ c - y))
+
+
+def log_correction(surface: Surface, E, H, nu_c=0.3, nu_s=0.3) -> np.ndarray:
+    """``w(1 - w) C_q`` of the corrected form (flattened broadcast shape)."""
+    X = M.variables("elastic", E, H, nu_c, nu_s)
+    w = weight(10.0 ** X[0])
+    return w * (1.0 - w) * surface(X)

@@ -70,6 +70,9 @@ class RefitRule:
         object.__setattr__(self, "_surfaces", surfaces)
         direct = {q: Surface.from_dict(d) for q, d in self.data.get("direct", {}).get("surfaces", {}).items()}
         object.__setattr__(self, "_direct", direct)
+        corrected = {q: Surface.from_dict(d)
+                     for q, d in self.data.get("corrected", {}).get("surfaces", {}).items()}
+        object.__setattr__(self, "_corrected", corrected)
 
     # -- surfaces ----------------------------------------------------------------------
     def model(self, config: str) -> M.AlphaModel:
@@ -111,6 +114,19 @@ class RefitRule:
             raise CoatHertzError(f"the refit data {self.source!r} has no direct fit")
         q = M.check_quantity(quantity)
         return np.exp(direct.log_bar(self._direct[q], q, E, H, nu_c, nu_s))  # type: ignore[attr-defined]
+
+    def corrected_bar(self, quantity: str, E, H, nu_c=0.3, nu_s=0.3) -> np.ndarray:
+        """The corrected one-alpha form (:func:`coathertz.refit.direct.fit_corrected`): refit alpha in
+        eqs (17)-(18) times a smooth factor vanishing in both Hertz limits (elastic substrate, rigid
+        indenter, circular contact)."""
+        from coathertz.refit import direct
+
+        if "corrected" not in self.data:
+            raise CoatHertzError(f"the refit data {self.source!r} has no corrected form")
+        q = M.check_quantity(quantity)
+        base = self.model("elastic").bar(q, E, H, nu_c, nu_s)
+        corr = self._corrected[q]  # type: ignore[attr-defined]
+        return base * np.exp(direct.log_correction(corr, E, H, nu_c, nu_s))
 
     # -- bounds ------------------------------------------------------------------------
     def in_range(self, config: str, E=1.0, H=1.0, nu_c=0.3, nu_s=0.3, rho=1.0) -> bool:
