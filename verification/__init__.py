@@ -88,7 +88,7 @@ _REQUIRED = ("NAME", "TITLE", "CLAIM", "cases", "analyse", "plot")
 #: Modules of this package that are framework, not studies.
 _FRAMEWORK = {"claims", "paper", "running", "study", "tables"}
 #: Order in the report (the paper's order); studies not listed come after, by name.
-ORDER = ("fig3", "fig4", "fig5", "poisson", "fig6", "fig7", "fig8_9", "fig10", "section6")
+ORDER = ("fig3", "fig4", "fig5", "poisson", "fig6", "fig7", "fig8_9", "fig10", "section6", "refit")
 
 
 def studies() -> dict[str, ModuleType]:

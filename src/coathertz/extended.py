@@ -151,6 +151,8 @@ class ExtendedPrediction:
 
 
 def _body_alpha(case: ContactCase, body: Body, q: str, rule: AlphaRule, H: float) -> float:
+    if hasattr(rule, "body_alpha"):  # a rule that needs the whole body (coathertz.refit)
+        return float(rule.body_alpha(body, q, H))
     if body.material.is_rigid:
         return float(alpha_rigid(q, H))
     return float(rule.alpha(q, body.modulus_ratio, H))

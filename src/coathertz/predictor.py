@@ -15,6 +15,8 @@ from coathertz.extended import predict
 from coathertz.results import ContactResult
 
 RULES = {r.name: r for r in (PAPER_RULE, EQ21_RULE)}
+#: Every ``alpha_rule`` name: the paper's rules plus ``refit`` (:mod:`coathertz.refit`, issue 10).
+RULE_NAMES = (*RULES, "refit")
 
 
 @dataclass(frozen=True)
@@ -27,6 +29,9 @@ class ClosedFormMethod:
         Name of the alpha rule for circular elastic-substrate cases (``paper``: eq 19 with the
         NOTES.md assumptions; ``eq21-fill``: eq 21's rows for the parts missing from eq 19).
         Elliptical cases always use eq (21), rigid substrates the rigid Appendix A curves.
+        ``refit``: the refitted smooth alpha of :mod:`coathertz.refit` for every configuration
+        (circular, rigid substrate, elliptical), with its validated error bound in
+        ``meta["refit_bound"]``.
     alphas
         Explicit alpha values overriding the curves.
     warn
@@ -54,8 +59,8 @@ class ClosedFormMethod:
     name: str = "closed-form"
 
     def __post_init__(self) -> None:
-        if self.alpha_rule not in RULES:
-            raise CoatHertzError(f"alpha_rule must be one of {sorted(RULES)}, got {self.alpha_rule!r}")
+        if self.alpha_rule not in RULE_NAMES:
+            raise CoatHertzError(f"alpha_rule must be one of {sorted(RULE_NAMES)}, got {self.alpha_rule!r}")
 
     def settings(self) -> Mapping[str, Any]:
         return {"alpha_rule": self.alpha_rule,
@@ -67,11 +72,17 @@ class ClosedFormMethod:
 
     def solve(self, case: ContactCase) -> ContactResult:
         t0 = time.perf_counter()
-        rule: AlphaRule | None = RULES[self.alpha_rule] if case.is_circular else None
+        bound = None
         with warnings.catch_warnings():
             if not self.warn:
                 warnings.simplefilter("ignore")
-            pred = predict(case, self.alphas, rule)
+            if self.alpha_rule == "refit" and self.alphas is None:
+                from coathertz import refit
+
+                pred, bound = refit.predict(case)
+            else:
+                rule: AlphaRule | None = RULES.get(self.alpha_rule) if case.is_circular else None
+                pred = predict(case, self.alphas, rule)
         meta = {
             "H": list(pred.H),
             "E": list(pred.E),
@@ -80,4 +91,9 @@ class ClosedFormMethod:
             "rule": pred.rule,
             "wall_time": time.perf_counter() - t0,
         }
+        if bound is not None:
+            meta["refit_bound"] = {"config": bound.config, "max_abs_err_percent": dict(bound.values),
+                                   "region": bound.region, "n_validation": bound.n_points,
+                                   "in_range": bound.in_range, "notes": list(bound.notes),
+                                   "text": bound.describe()}
         return ContactResult(self.name, pred.delta, pred.a, pred.p0, case.W, pred.r_a, pred.r_b, meta)

@@ -26,8 +26,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "--alpha", help="explicit alpha values 'a=..,p=..,delta=..' (e.g. read from figure 5)"
     )
     parser.add_argument("--alpha-rule", default="paper", choices=_alpha_rules(),
-                        help="how the parts of eq (19) missing from the copy are filled "
-                             "(docs/paper-notes.md)")
+                        help="alpha rule: 'paper' or 'eq21-fill' (how the parts of eq (19) missing from "
+                             "the copy are filled, docs/paper-notes.md), or 'refit' (smooth refitted "
+                             "alpha with a validated error bound, coathertz.refit)")
     parser.add_argument("--json", action="store_true", help="machine-readable output")
 
 
@@ -82,6 +83,8 @@ def run(args: argparse.Namespace) -> int:
         "validity": res.meta.get("validity"),
         "warnings": msgs,
     }
+    if "refit_bound" in res.meta:
+        info["refit_bound"] = res.meta["refit_bound"]
     for m in msgs:
         print(f"coathertz predict: warning: {m}", file=sys.stderr)
     if args.json:
@@ -107,4 +110,6 @@ def run(args: argparse.Namespace) -> int:
             row += [_um(r["r_a"]), _um(r["r_b"])]
         table.append(row)
     print(format_table(header, table))
+    if "refit_bound" in res.meta:
+        print(res.meta["refit_bound"]["text"])
     return 0

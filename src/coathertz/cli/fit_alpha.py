@@ -1,0 +1,255 @@
+"""``coathertz fit-alpha``: regenerate the refitted alpha data file from a stored sweep.
+
+Two ways in:
+
+* ``--sweep FILE``: refit from an exported sweep (JSON, e.g. the packaged
+  ``coathertz/data/alpha_refit_sweep.json``); no solver runs. This is how the shipped
+  coefficients are reproduced (``--check`` compares them).
+* otherwise: design the training and validation points, solve them with ``--method``
+  (circular; default ``axisym``, the exact axisymmetric method) and the FFT (ellipses) through
+  the result store ``--store`` (reusing stored results), export the sweep (``--export-sweep``),
+  then fit.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+from pathlib import Path
+
+NAME = "fit-alpha"
+HELP = "refit the extended-Hertz alpha (issue 10) from a stored sweep; writes the refit data file"
+
+SWEEP_FORMAT = "coathertz-refit-sweep/1"
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--sweep", type=Path, help="refit from this exported sweep (JSON) instead of solving")
+    parser.add_argument("--method", default="axisym", help="method for the circular sweeps (default axisym)")
+    parser.add_argument("--method-settings", default="{}", help="JSON settings of --method")
+    parser.add_argument("--ellipse-n", type=int, default=128, help="FFT grid (n x n) for the ellipse sweep")
+    parser.add_argument("--store", type=Path, default=Path("runs/refit/store.sqlite"),
+                        help="result store of the sweeps (default runs/refit/store.sqlite)")
+    for cfg, tr, va in (("elastic", 2000, 600), ("rigid", 400, 200), ("ellipse", 250, 120)):
+        parser.add_argument(f"--train-{cfg}", type=int, default=tr, help=f"{cfg} training points (+3^d box)")
+        parser.add_argument(f"--valid-{cfg}", type=int, default=va, help=f"{cfg} validation points")
+    for cfg, n in (("elastic", 24),):
+        parser.add_argument(f"--thin-valid-{cfg}", type=int, default=n,
+                            help=f"{cfg} validation points in the thin band H in [0.001, 0.01)")
+    parser.add_argument("--rigid-nu-lines", default="0.47,0.49,0.5",
+                        help="extra rigid-substrate lines at these nu_c (training; validation lines at "
+                             "their midpoints in H), since Sobol points leave nu_c -> 0.5 sparse")
+    parser.add_argument("--line-points", type=int, default=25, help="H values per nu_c line")
+    parser.add_argument("--reuse-sweep", action="append", default=[], metavar="FILE:CONFIG[,CONFIG]",
+                        help="take the rows of these configurations from an exported sweep instead of "
+                             "solving (e.g. runs/refit/fft128_sweep.json:ellipse)")
+    parser.add_argument("--configs", default="elastic,rigid,ellipse",
+                        help="configurations to solve (default elastic,rigid,ellipse)")
+    parser.add_argument("--workers", type=int, default=1, help="worker processes for the solvers")
+    parser.add_argument("--export-sweep", type=Path, help="write the sweep (JSON) here")
+    parser.add_argument("--out", type=Path, help="write the data file here (default: print the summary only)")
+    parser.add_argument("--spot-check", type=int, default=0, metavar="N",
+                        help="solve N training and N validation points per circular configuration with "
+                             "--spot-method and record the differences in the data file")
+    parser.add_argument("--spot-method", default="fft", help="method of the spot checks (default fft)")
+    parser.add_argument("--spot-settings", default='{"n": 256, "keep_fields": false, "workers": 1}',
+                        help="JSON settings of --spot-method")
+    parser.add_argument("--check", type=Path,
+                        help="compare the fitted coefficients with this data file; exit 1 if they differ")
+
+
+def load_sweep(path: Path) -> tuple[dict, dict]:
+    from coathertz.errors import CoatHertzError
+
+    d = json.loads(Path(path).read_text())
+    if d.get("format") != SWEEP_FORMAT:
+        raise CoatHertzError(f"{path}: not a refit sweep (format {d.get('format')!r}, "
+                             f"expected {SWEEP_FORMAT!r})")
+    cols = {k: [float("nan") if v is None else v for v in col] for k, col in d["columns"].items()}
+    return cols, d.get("provenance", {})
+
+
+def export_sweep(path: Path, table: dict, provenance: dict) -> None:
+    import math
+
+    def clean(v):
+        if isinstance(v, float):
+            return None if math.isnan(v) else float(f"{v:.12g}")
+        return v
+
+    cols = {k: [clean(v) for v in col] for k, col in table.items() if k != "failed"}
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    Path(path).write_text(json.dumps({"format": SWEEP_FORMAT, "provenance": provenance, "columns": cols},
+                                     separators=(",", ":")))
+
+
+def solve_sweep(args) -> tuple[dict, dict]:
+    from coathertz.methods import get_method
+    from coathertz.refit import sweep as S
+    from coathertz.store import ResultStore, code_version
+
+    settings = json.loads(args.method_settings)
+    circ = get_method(args.method, **settings)
+    ell = get_method("fft", n=args.ellipse_n, keep_fields=False, workers=1)
+    tables, times, reused = [], {}, {}
+    for spec in args.reuse_sweep:
+        path, _, cfgs = spec.rpartition(":")
+        cols, prov = load_sweep(Path(path))
+        for cfg in cfgs.split(","):
+            tab = {k: list(v) for k, v in S.select(cols, config=cfg).items()}
+            tab["failed"] = []
+            tables.append(tab)
+            reused[cfg] = {"file": Path(path).name, "rows": len(tab["H"]),
+                           "method": prov.get("ellipse_method" if cfg == "ellipse" else "circular_method"),
+                           "code_version": prov.get("code_version")}
+    wanted = set(args.configs.split(","))
+    plan = [(c, m) for c, m in (("elastic", circ), ("rigid", circ), ("ellipse", ell))
+            if c not in reused and c in wanted]
+    for cfg, m in plan:
+        pts = (S.design(cfg, getattr(args, f"train_{cfg}"))
+               + S.design(cfg, getattr(args, f"valid_{cfg}"), "valid"))
+        if cfg == "rigid" and args.rigid_nu_lines:
+            nus = [float(x) for x in args.rigid_nu_lines.split(",")]
+            pts += S.design_lines(cfg, nus, args.line_points) + S.design_lines(
+                cfg, nus, args.line_points - 1, "valid", offset=0.5)
+        if cfg in S.THIN:
+            pts += S.design(cfg, getattr(args, f"thin_valid_{cfg}"), "valid", seed=3, box=S.THIN[cfg])
+        t0 = time.perf_counter()
+        with ResultStore(args.store, version=S.method_code_version(m)) as store:
+            tab = S.collect(pts, m, store, workers=args.workers, progress=True, desc=f"refit {cfg}")
+        times[cfg] = round(time.perf_counter() - t0, 1)
+        if tab["failed"]:
+            print(f"fit-alpha: {len(tab['failed'])} {cfg} case(s) failed and are left out; first: "
+                  f"{tab['failed'][0]}", file=sys.stderr)
+        tables.append(tab)
+    if not tables:
+        from coathertz.errors import CoatHertzError
+
+        raise CoatHertzError("fit-alpha: nothing to fit (check --configs and --reuse-sweep)")
+    table = {k: [v for t in tables for v in t[k]] for k in tables[0] if k != "failed"}
+    prov = {
+        "code_version": code_version(),
+        "method_code_version": {"circular": S.method_code_version(circ),
+                                "ellipse": S.method_code_version(ell)},
+        "circular_method": {"name": circ.name, "settings": dict(circ.settings())},
+        "ellipse_method": {"name": ell.name, "settings": dict(ell.settings())},
+        "solve_seconds": times,
+        "reused": reused,
+        "created_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
+        "store": str(args.store),
+    }
+    return table, prov
+
+
+def compare(new: dict, old: dict) -> float:
+    """Largest |difference| of alpha predicted by two data files on a fixed probe grid (relative)."""
+    import numpy as np
+
+    from coathertz.refit.rule import RefitRule
+
+    a, b = RefitRule(new), RefitRule(old)
+    E = np.geomspace(0.1, 10, 9)[:, None, None]
+    H = np.geomspace(1e-3, 10, 13)[None, :, None]
+    nu = np.array([0.0, 0.25, 0.49])[None, None, :]
+    worst = 0.0
+    for cfg in new["surfaces"]:
+        if cfg not in old["surfaces"]:
+            return float("inf")
+        for q in new["surfaces"][cfg]:
+            if cfg == "ellipse":
+                from coathertz.refit import ellipse as EL
+
+                x = EL.log_correction(a.ellipse_surfaces(), q, 2.0, H.ravel(), 3.0)
+                y = EL.log_correction(b.ellipse_surfaces(), q, 2.0, H.ravel(), 3.0)
+                worst = max(worst, float(np.max(np.abs(x - y))))
+                continue
+            ma, mb = a.model(cfg), b.model(cfg)
+            x = ma.alpha(q, E, H, nu, 0.3) if cfg == "elastic" else ma.alpha(q, None, H, nu)
+            y = mb.alpha(q, E, H, nu, 0.3) if cfg == "elastic" else mb.alpha(q, None, H, nu)
+            worst = max(worst, float(np.max(np.abs(x / y - 1))))
+    for key in ("direct", "corrected"):  # the second forms: coefficients
+        for q, sd in new.get(key, {}).get("surfaces", {}).items():
+            od = old.get(key, {}).get("surfaces", {}).get(q)
+            if od is None or len(od["coef"]) != len(sd["coef"]):
+                return float("inf")
+            c1, c2 = np.asarray(sd["coef"]), np.asarray(od["coef"])
+            worst = max(worst, float(np.max(np.abs(c1 - c2)) / max(np.max(np.abs(c2)), 1e-300)))
+    return worst
+
+
+def run(args: argparse.Namespace) -> int:
+    from coathertz.refit.build import build
+
+    if args.sweep:
+        table, prov = load_sweep(args.sweep)
+        prov = {**prov, "sweep_file": args.sweep.name}
+    else:
+        table, prov = solve_sweep(args)
+        if args.export_sweep:
+            export_sweep(args.export_sweep, table, prov)
+            print(f"sweep written to {args.export_sweep} ({len(table['H'])} points)")
+    prov["command"] = "coathertz fit-alpha " + " ".join(sys.argv[2:]) if sys.argv[1:2] == [NAME] else NAME
+    data = build(table, provenance=prov)
+    if args.spot_check:
+        from coathertz.methods import get_method
+        from coathertz.refit import sweep as S
+        from coathertz.refit.sweep import spot_check
+        from coathertz.store import ResultStore
+
+        m = get_method(args.spot_method, **json.loads(args.spot_settings))
+        with ResultStore(args.store, version=S.method_code_version(m)) as store:
+            data["spot_checks"] = spot_check(table, m, store, args.spot_check)
+    print(summary(data))
+    if args.out:
+        args.out.parent.mkdir(parents=True, exist_ok=True)
+        args.out.write_text(json.dumps(data, indent=1))
+        print(f"data file written to {args.out}")
+    if args.check:
+        old = json.loads(args.check.read_text())
+        diff = compare(data, old)
+        ok = diff < 1e-6
+        print(f"check against {args.check}: largest relative difference of alpha {diff:.2e} "
+              f"({'matches' if ok else 'DIFFERS'})")
+        return 0 if ok else 1
+    return 0
+
+
+def summary(data: dict) -> str:
+    """Table of fit and validation errors next to the paper's rule."""
+    from coathertz.cli._common import format_table
+
+    rows = []
+    for cfg, qs in data["validation_error"].items():
+        for q, v in qs.items():
+            p = data["paper_error"].get(cfg, {}).get(q, {})
+            f = data["fit_error"][cfg][q]
+            rows.append([cfg, q, str(v["n"]), f"{f['max']:.3f}", f"{v['max']:.3f}", f"{v['p99']:.3f}",
+                         f"{p.get('max', float('nan')):.2f}", f"{p.get('p99', float('nan')):.2f}"])
+    for key, label in (("direct", "elastic (direct form)"), ("corrected", "elastic (corrected alpha)")):
+        for q, v in data.get(key, {}).get("validation_error", {}).items():
+            f = data[key]["fit_error"][q]
+            rows.append([label, q, str(v["n"]), f"{f['max']:.3f}", f"{v['max']:.3f}", f"{v['p99']:.3f}",
+                         "", ""])
+    head = ["config", "quantity", "n valid", "train max %", "valid max %", "valid p99 %",
+            "paper max %", "paper p99 %"]
+    text = format_table(head, rows)
+    floors = []
+    for cfg, qs in data.get("single_alpha_floor", {}).items():
+        for q, v in qs.items():
+            if v["n_above_target"]:
+                w = ", ".join(f"{k} = {x:.3g}" for k, x in v["worst"].items())
+                floors.append(f"  {cfg} {q}: {v['n_above_target']} of {v['n']} points beyond "
+                              f"{v['target_percent']} % for every alpha; worst {v['max_percent']:.2f} % "
+                              f"at {w}")
+    sc = data.get("spot_checks")
+    if sc:
+        text += f"\nspot checks against {sc['method']} ({sc['settings']}): max |difference| [%] of the bars"
+        for k, v in sc["per_set"].items():
+            d = ", ".join(f"{q} {x:.3g}" for q, x in v["max_abs_diff_percent"].items())
+            text += f"\n  {k}: {v['n']} points ({v['failed']} failed): {d}"
+    if floors:
+        text += ("\nwhere no single alpha reaches the target (one-alpha structure, eqs 17-18):\n"
+                 + "\n".join(floors))
+    return text

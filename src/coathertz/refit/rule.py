@@ -1,0 +1,237 @@
+"""The refitted rule as the predictor uses it: load the data file, alpha per body, bounds.
+
+:func:`load` reads ``coathertz/data/alpha_refit.json`` (or another file) into a
+:class:`RefitRule`. :meth:`RefitRule.body_alpha` is the hook :func:`coathertz.extended.predict`
+calls for each coated body; :func:`predict` wraps that call, adds the elliptical correction
+(:mod:`coathertz.refit.ellipse`), and returns the validated error bound of the inputs and the
+range warnings.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+import warnings
+from dataclasses import dataclass, field
+from functools import lru_cache
+from importlib import resources
+from pathlib import Path
+
+import numpy as np
+
+from coathertz.errors import CoatHertzError, FittedRangeWarning
+from coathertz.refit import ellipse as EL
+from coathertz.refit import model as M
+from coathertz.refit.build import BINS, FORMAT, bin_index
+from coathertz.refit.surface import Surface
+
+DATA_FILE = "alpha_refit.json"
+
+
+@dataclass(frozen=True)
+class Bound:
+    """The validated error bound of one prediction: max |err| [%] of the validation points in
+    the same region (bin) of the inputs, per quantity, and where it comes from."""
+
+    config: str
+    values: dict[str, float]
+    region: str
+    n_points: int
+    in_range: bool
+    notes: tuple[str, ...] = ()
+
+    @property
+    def worst(self) -> float:
+        v = [x for x in self.values.values() if x is not None and math.isfinite(x)]
+        return max(v) if v else math.nan
+
+    def describe(self) -> str:
+        vals = ", ".join(f"{q} {v:.2g} %" for q, v in self.values.items() if v is not None)
+        where = "inside" if self.in_range else "OUTSIDE"
+        return (f"refit rule ({self.config}): validated max |error| {vals} "
+                f"({self.n_points} validation points in {self.region}; inputs {where} the validated range)")
+
+
+@dataclass(frozen=True)
+class RefitRule:
+    """The refitted alpha rule (data file contents)."""
+
+    data: dict = field(repr=False)
+    source: str = ""
+    name: str = "refit"
+
+    def __post_init__(self) -> None:
+        if self.data.get("format") != FORMAT:
+            raise CoatHertzError(f"{self.source or 'refit data'}: format {self.data.get('format')!r}, "
+                                 f"expected {FORMAT!r}")
+        surfaces = {c: {q: Surface.from_dict(d) for q, d in qs.items()}
+                    for c, qs in self.data["surfaces"].items()}
+        object.__setattr__(self, "_surfaces", surfaces)
+        direct = {q: Surface.from_dict(d) for q, d in self.data.get("direct", {}).get("surfaces", {}).items()}
+        object.__setattr__(self, "_direct", direct)
+        corrected = {q: Surface.from_dict(d)
+                     for q, d in self.data.get("corrected", {}).get("surfaces", {}).items()}
+        object.__setattr__(self, "_corrected", corrected)
+
+    # -- surfaces ----------------------------------------------------------------------
+    def model(self, config: str) -> M.AlphaModel:
+        return _model(self, config)
+
+    def ellipse_surfaces(self) -> dict[str, Surface] | None:
+        return self._surfaces.get("ellipse")  # type: ignore[attr-defined]
+
+    @property
+    def has_ellipse(self) -> bool:
+        return "ellipse" in self.data["surfaces"]
+
+    def alpha(self, quantity: str, E, H, nu_c=0.3, nu_s=0.3) -> np.ndarray:
+        """alpha_q on an elastic substrate (``b`` uses ``a``)."""
+        q = "a" if quantity == "b" else quantity
+        return self.model("elastic").alpha(q, E, H, nu_c, nu_s)
+
+    def alpha_rigid(self, quantity: str, H, nu_c=0.3) -> np.ndarray:
+        q = "a" if quantity == "b" else quantity
+        return self.model("rigid").alpha(q, None, H, nu_c)
+
+    def body_alpha(self, body, quantity: str, H: float) -> float:
+        """alpha of one coated body (the hook of :func:`coathertz.extended.predict`)."""
+        nu_c = body.coating.material.nu
+        if body.material.is_rigid:
+            return float(self.alpha_rigid(quantity, H, nu_c)[0])
+        return float(self.alpha(quantity, body.modulus_ratio, H, nu_c, body.material.nu)[0])
+
+    @property
+    def has_direct(self) -> bool:
+        return "direct" in self.data
+
+    def direct_bar(self, quantity: str, E, H, nu_c=0.3, nu_s=0.3) -> np.ndarray:
+        """The second closed form (:mod:`coathertz.refit.direct`): bars of a rigid indenter on a
+        coated elastic half-space, fitted directly (no eq 17)."""
+        from coathertz.refit import direct
+
+        if not self.has_direct:
+            raise CoatHertzError(f"the refit data {self.source!r} has no direct fit")
+        q = M.check_quantity(quantity)
+        return np.exp(direct.log_bar(self._direct[q], q, E, H, nu_c, nu_s))  # type: ignore[attr-defined]
+
+    def corrected_bar(self, quantity: str, E, H, nu_c=0.3, nu_s=0.3) -> np.ndarray:
+        """The corrected one-alpha form (:func:`coathertz.refit.direct.fit_corrected`): refit alpha in
+        eqs (17)-(18) times a smooth factor vanishing in both Hertz limits (elastic substrate, rigid
+        indenter, circular contact)."""
+        from coathertz.refit import direct
+
+        if "corrected" not in self.data:
+            raise CoatHertzError(f"the refit data {self.source!r} has no corrected form")
+        q = M.check_quantity(quantity)
+        base = self.model("elastic").bar(q, E, H, nu_c, nu_s)
+        corr = self._corrected[q]  # type: ignore[attr-defined]
+        return base * np.exp(direct.log_correction(corr, E, H, nu_c, nu_s))
+
+    # -- bounds ------------------------------------------------------------------------
+    def in_range(self, config: str, E=1.0, H=1.0, nu_c=0.3, nu_s=0.3, rho=1.0) -> bool:
+        r = self.data["ranges"].get(config)
+        if r is None:
+            return False
+        vals = {"H": H, "E": E, "nu_c": nu_c, "nu_s": nu_s, "rho": rho}
+        return all(lo * (1 - 1e-9) - 1e-12 <= vals[k] <= hi * (1 + 1e-9) + 1e-12 for k, (lo, hi) in r.items())
+
+    def bound(self, config: str, E=1.0, H=1.0, nu_c=0.3, nu_s=0.3, rho=1.0) -> Bound:
+        """Validated max |err| of the region of the inputs (see :class:`Bound`)."""
+        b = self.data["bounds"].get(config)
+        if b is None:
+            return Bound(config, {}, "no validation data", 0, False, ("no validation data for " + config,))
+        cols = {"H": np.array([H]), "E": np.array([E]), "nu_c": np.array([nu_c])}
+        from coathertz.refit.build import bin_coords
+
+        x1, x2 = bin_coords(config, cols)
+        (n1, e1), (n2, e2) = BINS[config]
+        i, j = int(bin_index(e1, x1)[0]), int(bin_index(e2, x2)[0])
+        vals = {q: m[i][j] for q, m in b["max"].items()}
+        region = (f"{n1} in [{e1[i]:.3g}, {e1[i + 1]:.3g}], {n2} in [{e2[j]:.3g}, {e2[j + 1]:.3g}]")
+        inside = self.in_range(config, E, H, nu_c, nu_s, rho)
+        return Bound(config, vals, region, int(b["count"][i][j]), inside)
+
+
+def _model(rule: RefitRule, config: str) -> M.AlphaModel:
+    surfaces = rule._surfaces  # type: ignore[attr-defined]
+    if config not in surfaces:
+        raise CoatHertzError(f"the refit data {rule.source!r} has no {config!r} surfaces")
+    return M.AlphaModel(config, surfaces[config])
+
+
+def load(path: str | Path | None = None) -> RefitRule:
+    """The refit rule from ``path`` (default: the packaged ``alpha_refit.json``)."""
+    if path is None:
+        return _default()
+    p = Path(path)
+    if not p.is_file():
+        raise CoatHertzError(f"refit data file {str(p)!r} does not exist")
+    return RefitRule(json.loads(p.read_text()), str(p))
+
+
+@lru_cache(maxsize=1)
+def _default() -> RefitRule:
+    ref = resources.files("coathertz") / "data" / DATA_FILE
+    return RefitRule(json.loads(ref.read_text()), f"coathertz/data/{DATA_FILE}")
+
+
+def _config_of(case) -> tuple[str, dict]:
+    coated = case.coated_bodies
+    b = coated[0]
+    nu_c = b.coating.material.nu
+    H = case.H_of(b)
+    if b.material.is_rigid:
+        return "rigid", {"H": H, "nu_c": nu_c}
+    params = {"E": b.modulus_ratio, "H": H, "nu_c": nu_c, "nu_s": b.material.nu}
+    if not case.is_circular:
+        return "ellipse", {**params, "rho": case.Rx / case.Ry}
+    return "elastic", params
+
+
+def predict(case, rule: RefitRule | None = None, *, warn: bool = True):
+    """Extended-Hertz prediction of ``case`` with the refitted rule.
+
+    Returns ``(ExtendedPrediction, Bound | None)``; the bound is None for an uncoated case.
+    Warns (:class:`FittedRangeWarning`) outside the validated range, for elastic indenters
+    or two coated bodies (the fits are for a rigid indenter on one coated body), and for
+    coated ellipses on a rigid substrate (no elliptical rigid-substrate fit).
+    """
+    from coathertz.extended import predict as extended_predict
+
+    rule = rule or load()
+    pred = extended_predict(case, rule=rule, warn=False)
+    if not case.is_coated:
+        return pred, None
+    config, params = _config_of(case)
+    notes = []
+    if config == "ellipse":
+        if rule.has_ellipse:
+            surfs = rule.ellipse_surfaces()
+            E, H, rho = params["E"], params["H"], params["rho"]
+            f = {q: float(np.exp(EL.log_correction(surfs, q, E, H, rho)[0])) for q in EL.QUANTITIES}
+            r_a, r_b = pred.r_a * f["r_a"], pred.r_b * f["r_b"]
+            pred = dataclasses.replace(pred, r_a=r_a, r_b=r_b, a=math.sqrt(r_a * r_b),
+                                       delta=pred.delta * f["delta"], p0=pred.p0 * f["p"])
+        else:
+            notes.append("no elliptical correction in this data file: circular alpha only")
+    elif case.rigid_substrate and not case.is_circular:
+        notes.append("rigid substrate, elliptical contact: only circular contacts were fitted")
+    if len(case.coated_bodies) > 1 or any(not b.material.is_rigid for b in (case.body1, case.body2)
+                                          if not b.is_coated):
+        notes.append("fitted for a rigid indenter on one coated body; here alpha is applied through "
+                     "eq (18) without validation")
+    bound = rule.bound(config, **params)
+    bound = dataclasses.replace(bound, notes=tuple(notes))
+    pred = dataclasses.replace(pred, rule=rule.name)
+    if warn:
+        if not bound.in_range:
+            r = rule.data["ranges"].get(config, {})
+            rng = ", ".join(f"{k} in [{lo:.3g}, {hi:.3g}]" for k, (lo, hi) in r.items())
+            got = ", ".join(f"{k} = {v:.3g}" for k, v in params.items())
+            warnings.warn(f"refit rule: inputs outside the validated range ({got}; validated: {rng}); "
+                          "alpha is held at its boundary value, the error bound does not apply",
+                          FittedRangeWarning, stacklevel=2)
+        for n in notes:
+            warnings.warn(f"refit rule: {n}", FittedRangeWarning, stacklevel=2)
+    return pred, bound

@@ -1,0 +1,84 @@
+"""Benchmark of the refitted closed form (a script, not part of the test run).
+
+Reports the vectorised evaluation rate of the refit rule (goal: >= 1e6 cases/s, a case being
+all three of a, delta, p0) for random inputs over the validated ranges, next to the paper's
+rule (eq 19 + Appendix A through :func:`coathertz.extended.predict_bar`) on the same inputs,
+for the elastic substrate, the rigid substrate and the elliptical correction. Timings are the
+best of ``--repeat`` runs; on a shared machine quote the ratios.
+
+Usage: ``python tests/benchmarks/bench_refit.py [--n 1000000] [--repeat 5]``
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import platform
+import time
+import warnings
+
+import numpy as np
+
+from coathertz.alpha import PAPER_RULE
+from coathertz.extended import predict_bar
+from coathertz.refit import ellipse as EL
+from coathertz.refit import load
+
+
+def best(f, repeat: int) -> float:
+    t = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        f()
+        t.append(time.perf_counter() - t0)
+    return min(t)
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--n", type=int, default=1_000_000)
+    ap.add_argument("--repeat", type=int, default=5)
+    args = ap.parse_args(argv)
+    n = args.n
+    rng = np.random.default_rng(0)
+    E = 10 ** rng.uniform(-1, 1, n)
+    H = 10 ** rng.uniform(-3, 1, n)
+    nu_c = rng.uniform(0, 0.49, n)
+    nu_s = rng.uniform(0, 0.49, n)
+    rho = 10 ** rng.uniform(0, 1, n)
+    rule = load()
+    el, rg = rule.model("elastic"), rule.model("rigid")
+    surfs = rule.ellipse_surfaces()
+    print(f"machine: {platform.processor() or platform.machine()}, {os.cpu_count()} cores (shared), "
+          f"numpy {np.__version__}; n = {n}, best of {args.repeat}")
+    rows = []
+    t = best(lambda: el.bars(E, H, nu_c, nu_s), args.repeat)
+    rows.append(("refit, elastic substrate (a, delta, p)", t))
+    t = best(lambda: rg.bars(None, H, nu_c), args.repeat)
+    rows.append(("refit, rigid substrate (a, delta, p)", t))
+
+    def ell():
+        b = el.bars(E, H, nu_c, nu_s)
+        return {q: b[EL.BASE[q]] * np.exp(EL.log_correction(surfs, q, E, H, rho)) for q in EL.QUANTITIES}
+
+    t = best(ell, args.repeat)
+    rows.append(("refit, ellipse (r_a, r_b, delta, p)", t))
+
+    def paper():
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            return [predict_bar(q, E, H, nu_c, nu_s, rule=PAPER_RULE, warn=False)
+                    for q in ("a", "delta", "p")]
+
+    t = best(paper, args.repeat)
+    rows.append(("paper's rule, elastic (a, delta, p)", t))
+    ref = rows[-1][1]
+    for name, t in rows:
+        print(f"{name:42s} {t:7.3f} s  {n / t:12.3e} cases/s  ({t / ref:.2f} x the paper's rule)")
+    ok = n / rows[0][1] >= 1e6
+    print(f"goal >= 1e6 cases/s (elastic, all three quantities): {'met' if ok else 'NOT met'}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

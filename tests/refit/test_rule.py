@@ -1,0 +1,140 @@
+"""The packaged refit rule: limits, continuity, symmetry under swapping the bodies, ranges.
+
+Tolerances: the H -> 0 and H -> inf limits are approached like alpha H (eq 17), so at
+H = 1e-9 (resp. 1e7) the bars are within ~1e-7 of their limits (alpha < 30 everywhere).
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import pytest
+
+from coathertz.alpha import breakpoint_jumps
+from coathertz.case import ContactCase
+from coathertz.errors import FittedRangeWarning
+from coathertz.materials import RIGID, Body, Coating, Material
+from coathertz.predictor import ClosedFormMethod
+from coathertz.refit import ellipse as EL
+from coathertz.refit import load, sweep
+
+RULE = load()
+E_GRID = np.geomspace(0.1, 10, 7)
+NU_GRID = (0.0, 0.3, 0.49)
+
+
+@pytest.mark.parametrize("q,k", [("a", -1 / 3), ("delta", -2 / 3), ("p", 2 / 3)])
+def test_elastic_limits(q, k):
+    m = RULE.model("elastic")
+    for nu_c in NU_GRID:
+        thin = m.bar(q, E_GRID, 1e-9, nu_c, 0.3)
+        thick = m.bar(q, E_GRID, 1e7, nu_c, 0.3)
+        np.testing.assert_allclose(thin, 1.0, atol=1e-6, err_msg="H -> 0: substrate Hertz")
+        np.testing.assert_allclose(thick, E_GRID**k, rtol=1e-6, err_msg="H -> inf: coating Hertz")
+
+
+def test_rigid_limits():
+    m = RULE.model("rigid")
+    nu = np.array([0.0, 0.3, 0.5])
+    np.testing.assert_allclose(m.bar("a", None, 1e7, nu), 1.0, rtol=1e-6)
+    np.testing.assert_allclose(m.bar("p", None, 1e7, nu), 1.0, rtol=1e-6)
+    # thin layer on a rigid base: much stiffer than the coating half-space
+    assert np.all(m.bar("p", None, 1e-4, nu) > 3) and np.all(m.bar("delta", None, 1e-4, nu) < 0.3)
+
+
+def _max_jump(f, lo, hi, n=4001, eps=1e-10):
+    x = np.linspace(lo, hi, n)
+    return float(np.max(np.abs(f(x + eps) - f(x))))
+
+
+def test_alpha_bounded():
+    """alpha stays in (1e-4, 1e4) (soft cap, model.LN_ALPHA_CAP) over and beyond the box."""
+    H = np.geomspace(1e-5, 1e3, 200)[:, None, None]
+    E = np.geomspace(0.05, 20, 15)[None, :, None]
+    nu = np.linspace(0, 0.5, 11)[None, None, :]
+    for q in ("a", "delta", "p"):
+        for al in (RULE.alpha(q, E, H, nu, 0.3), RULE.alpha(q, E, H, 0.3, nu), RULE.alpha_rigid(q, H, nu)):
+            ok = np.all(np.isfinite(al)) and np.all((al > 1e-4) & (al < 1e4))
+            assert ok, (q, float(al.min()), float(al.max()))
+
+
+def test_continuity_no_jumps():
+    """|ln alpha(x + 1e-10) - ln alpha(x)| < 1e-6 along every variable, across the clamped box edges
+    (and the same for the elliptical log-corrections)."""
+    el, rg = RULE.model("elastic"), RULE.model("rigid")
+    worst = 0.0
+    for q in ("a", "delta", "p"):
+        for E in (0.1, 0.5, 1.0, 3.0, 10.0):
+            worst = max(worst, _max_jump(lambda lh, E=E, q=q: np.log(el.alpha(q, E, 10**lh, 0.3, 0.3)),
+                                         -5, 3))
+        worst = max(worst, _max_jump(lambda le, q=q: np.log(el.alpha(q, 10**le, 0.5, 0.3, 0.3)), -2, 2))
+        worst = max(worst, _max_jump(lambda nu, q=q: np.log(el.alpha(q, 2.0, 0.5, nu, 0.3)), 0.0, 0.5 - 1e-9))
+        worst = max(worst, _max_jump(lambda nu, q=q: np.log(rg.alpha(q, None, 0.5, nu)), 0.0, 0.5 - 1e-9))
+        worst = max(worst, _max_jump(lambda lh, q=q: np.log(rg.alpha(q, None, 10**lh, 0.3)), -5, 3))
+    surfs = RULE.ellipse_surfaces()
+    for q in EL.QUANTITIES:
+        worst = max(worst, _max_jump(lambda lh, q=q: EL.log_correction(surfs, q, 4.0, 10**lh, 5.0), -4, 2))
+        worst = max(worst, _max_jump(lambda lr, q=q: EL.log_correction(surfs, q, 4.0, 0.5, 10**lr), 0, 2))
+        worst = max(worst, _max_jump(lambda le, q=q: EL.log_correction(surfs, q, 10**le, 0.5, 5.0), -1, 1))
+    assert worst < 1e-6, f"largest jump {worst:.2e}"
+    # the same measure flags the paper's Appendix A pieces (the test can fail)
+    assert max(abs(np.log(j["right"] / j["left"])) for j in breakpoint_jumps()) > 1e-3
+
+
+def _pair(swap: bool, indenter=RIGID, coated_rigid=False, Rx=10e-3, Ry=10e-3):
+    sub = RIGID if coated_rigid else Material(200e9, 0.25)
+    coated = Body.half_space(sub, Coating(Material(600e9, 0.2), 12e-6))
+    ind = Body(indenter, None, Rx, Ry)
+    return ContactCase(coated, ind, 1.0) if swap else ContactCase(ind, coated, 1.0)
+
+
+@pytest.mark.parametrize("kw", [{}, {"coated_rigid": True}, {"indenter": Material(300e9, 0.3)},
+                                {"Rx": 30e-3, "Ry": 5e-3}])
+def test_symmetry_under_swapping_bodies(kw):
+    m = ClosedFormMethod("refit", warn=False)
+    r1, r2 = m.solve(_pair(False, **kw)), m.solve(_pair(True, **kw))
+    for f in ("delta", "a", "p0", "r_a", "r_b"):
+        assert getattr(r1, f) == pytest.approx(getattr(r2, f), rel=1e-12), f
+
+
+def test_two_coated_bodies_use_eq18():
+    """Two identical coated balls: eq (18) sums the two extended compliances (paper Section 6)."""
+    ball = Body(Material(200e9, 0.28), Coating(Material(406.25e9, 0.3), 12.336e-6), 10e-3, 10e-3)
+    case = ContactCase(ball, ball, 1.0)
+    with warnings.catch_warnings(record=True) as w:
+        warnings.simplefilter("always")
+        res = ClosedFormMethod("refit").solve(case)
+    assert any("rigid indenter on one coated body" in str(x.message) for x in w)
+    e1 = res.meta["E_star"]
+    assert all(np.isfinite(v) for v in e1.values())
+
+
+def test_warns_outside_validated_range_and_reports_bound():
+    inside = sweep.make_case(sweep.Point("elastic", 2.0, 0.5))
+    outside = sweep.make_case(sweep.Point("elastic", 30.0, 0.5))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", FittedRangeWarning)
+        res = ClosedFormMethod("refit").solve(inside)
+    b = res.meta["refit_bound"]
+    assert b["in_range"] and b["config"] == "elastic" and b["n_validation"] > 0
+    with pytest.warns(FittedRangeWarning, match="outside the validated range"):
+        res = ClosedFormMethod("refit").solve(outside)
+    assert not res.meta["refit_bound"]["in_range"]
+
+
+def test_ellipse_correction_vanishes_for_circles_and_at_E_1():
+    surfs = RULE.ellipse_surfaces()
+    for q in EL.QUANTITIES:
+        assert np.all(EL.log_correction(surfs, q, np.array([0.3, 4.0]), 0.5, 1.0) == 0.0)
+        assert np.all(EL.log_correction(surfs, q, 1.0, np.array([0.05, 2.0]), 8.0) == 0.0)
+
+
+@pytest.mark.parametrize("q,k", [("a", -1 / 3), ("delta", -2 / 3), ("p", 2 / 3)])
+def test_second_forms_limits_and_continuity(q, k):
+    """The direct and the corrected forms keep both Hertz limits and have no jumps."""
+    for f in (RULE.direct_bar, RULE.corrected_bar):
+        np.testing.assert_allclose(f(q, E_GRID, 1e-9, 0.3, 0.3), 1.0, atol=1e-6)
+        np.testing.assert_allclose(f(q, E_GRID, 1e9, 0.3, 0.3), E_GRID**k, rtol=1e-6)
+        jump = _max_jump(lambda lh, f=f: np.log(f(q, 3.0, 10**lh, 0.2, 0.4)), -5, 3)
+        assert jump < 1e-6, f"largest jump {jump:.2e}"

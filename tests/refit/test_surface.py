@@ -1,0 +1,45 @@
+"""The Chebyshev-product surface: fast evaluation equals the design matrix, clamping, round trip."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from coathertz.errors import CoatHertzError
+from coathertz.refit.surface import Surface, chebyshev_table, term_set
+
+
+def _surface(seed=0):
+    terms = term_set((5, 4, 2, 2), ((2, 2), (1, 1)))
+    c = np.random.default_rng(seed).normal(size=len(terms))
+    return Surface(("x", "y", "u", "v"), (-3, -1, 0, 0), (1, 1, 0.5, 0.5), terms, tuple(c))
+
+
+def test_fast_evaluation_equals_design_matrix():
+    s = _surface()
+    X = np.random.default_rng(1).uniform([-4, -1.5, 0, 0], [2, 1.5, 0.5, 0.5], size=(70001, 4)).T
+    np.testing.assert_allclose(s(X), s.design(X) @ np.array(s.coef), rtol=1e-12, atol=1e-12)
+
+
+def test_chebyshev_table_matches_numpy():
+    x = np.linspace(-1, 1, 11)
+    T = chebyshev_table(x, 6)
+    for k in range(7):
+        np.testing.assert_allclose(T[k], np.polynomial.chebyshev.chebval(x, np.eye(7)[k]), atol=1e-14)
+
+
+def test_clamped_outside_the_box():
+    s = _surface()
+    inside = np.array([[1.0], [0.3], [0.2], [0.1]])
+    outside = inside.copy()
+    outside[0] = 7.0  # far beyond hi = 1
+    assert s(outside)[0] == s(inside)[0]
+
+
+def test_round_trip_and_validation():
+    s = _surface()
+    assert Surface.from_dict(s.to_dict()) == s
+    with pytest.raises(CoatHertzError, match="lo < hi"):
+        Surface(("x",), (1.0,), (0.0,), ((0,),), (1.0,))
+    with pytest.raises(CoatHertzError, match="shape"):
+        s(np.zeros((3, 4)))
