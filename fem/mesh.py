@@ -70,6 +70,11 @@ class MeshSpec:
             raise CoatHertzError(f"growth must be in (1, 2], got {self.growth!r}")
         if not (5.0 <= self.L <= 1e5):
             raise CoatHertzError(f"L must be in [5, 1e5] (units of max(a, h)), got {self.L!r}")
+        if self.L < 2.0 * max(self.r_fine, self.t_fine):
+            raise CoatHertzError(
+                f"L must be at least 2 max(r_fine, t_fine) = {2.0 * max(self.r_fine, self.t_fine):g}"
+                f" (units of a), got {self.L!r}"
+            )
         if not (0.5 <= self.edge <= 1e3):
             raise CoatHertzError(f"edge must be in [0.5, 1000], got {self.edge!r}")
         if not (isinstance(self.n_coat, int | np.integer) and 1 <= self.n_coat <= 100):
@@ -158,6 +163,25 @@ def edge_band(a_ref: float, h: float, spec: MeshSpec) -> tuple[float, float]:
     return s_e, min(0.15 * a_ref, max(0.05 * a_ref, 5.0 * h))
 
 
+#: Largest ratio of adjacent element sizes :func:`build_mesh` may produce (a guard against
+#: slivers; measured <= 2.2 over H = 1e-3 ... 1e2 at every mesh level).
+MAX_SIZE_RATIO = 4.0
+
+
+def check_spacing(x: np.ndarray, what: str) -> None:
+    """Raise if the 1-D grid ``x`` is not strictly increasing or has adjacent intervals whose
+    sizes differ by more than :data:`MAX_SIZE_RATIO` (a degenerate, near-singular element)."""
+    d = np.diff(x)
+    if not np.all(d > 0):
+        raise CoatHertzError(f"mesh generator: {what} grid is not strictly increasing (internal error)")
+    worst = float(np.max(np.maximum(d[1:] / d[:-1], d[:-1] / d[1:]))) if len(d) > 1 else 1.0
+    if worst > MAX_SIZE_RATIO:
+        raise CoatHertzError(
+            f"mesh generator: adjacent {what} intervals differ by a factor {worst:.3g} > {MAX_SIZE_RATIO:g}"
+            " (a degenerate element; internal error, please report the case)"
+        )
+
+
 def build_mesh(a_ref: float, h: float, spec: MeshSpec, rigid_base: bool = False) -> LayeredMesh:
     """Graded tensor-product mesh for a contact of radius about ``a_ref`` on a coating of
     thickness ``h`` (0: homogeneous body) over an elastic (or, ``rigid_base``, rigid) substrate."""
@@ -172,6 +196,7 @@ def build_mesh(a_ref: float, h: float, spec: MeshSpec, rigid_base: bool = False)
     L = spec.L * max(a_ref, h)
     r_f = spec.r_fine * a_ref
     s_e, w = edge_band(a_ref, h, spec)
+    w = min(w, 0.5 * (r_f - a_ref))  # the band stays inside the fine zone (r_fine >= 1.05)
     if s_e < s0:
         # thin coating: the pressure edge has a boundary layer of width ~h; resolve it with
         # spacing s_e in the band |r - a_ref| <= w, grading back to s0 on both sides
@@ -185,6 +210,11 @@ def build_mesh(a_ref: float, h: float, spec: MeshSpec, rigid_base: bool = False)
 
     t_f = spec.t_fine * a_ref
     if h > 0:
+        if abs(h - t_f) < 2.0 * s0:
+            # The bottom of the fine layer is a soft boundary: near the interface it moves onto it.
+            # Otherwise a sliver element of thickness |h - t_f| is left between the two (issue 9:
+            # h = t_f (1 + 1e-12), i.e. H = 0.5 at a_ref = a0c, made the system exactly singular).
+            t_f = h
         n_c = max(spec.n_coat, math.ceil(min(h, t_f) / min(s0, s_e) - 1e-9))
         if h <= t_f:
             t = np.linspace(0.0, h, n_c + 1)
@@ -203,6 +233,8 @@ def build_mesh(a_ref: float, h: float, spec: MeshSpec, rigid_base: bool = False)
         D = L
         t = _join(np.linspace(0.0, t_f, round(t_f / s0) + 1), graded(t_f, D, s0 * q, q))
     z = -t[::-1]
+    check_spacing(r, "r")
+    check_spacing(t, "depth")
     mesh = MeshQuad.init_tensor(r, z)
     zc = mesh.p[1, mesh.t].mean(axis=0)
     coating = np.nonzero(zc > -h)[0] if h > 0 else np.array([], dtype=np.int64)
