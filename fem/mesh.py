@@ -89,15 +89,6 @@ MESH_LEVELS: dict[str, MeshSpec] = {
 }
 
 
-def mesh_spec(level: str | MeshSpec) -> MeshSpec:
-    """The :class:`MeshSpec` named ``level`` (``coarse``, ``default``, ``fine``) or ``level`` itself."""
-    if isinstance(level, MeshSpec):
-        return level
-    if level not in MESH_LEVELS:
-        raise CoatHertzError(f"mesh level must be one of {sorted(MESH_LEVELS)}, got {level!r}")
-    return MESH_LEVELS[level]
-
-
 def graded(start: float, stop: float, s_first: float, growth: float, s_max: float = math.inf) -> np.ndarray:
     """Points from ``start`` to ``stop`` (both included) whose spacing starts near ``s_first``
     and grows by ``growth`` per interval, capped at ``s_max``; rescaled to end exactly at ``stop``."""
@@ -182,26 +173,89 @@ def check_spacing(x: np.ndarray, what: str) -> None:
         )
 
 
-def build_mesh(a_ref: float, h: float, spec: MeshSpec, rigid_base: bool = False) -> LayeredMesh:
-    """Graded tensor-product mesh for a contact of radius about ``a_ref`` on a coating of
-    thickness ``h`` (0: homogeneous body) over an elastic (or, ``rigid_base``, rigid) substrate."""
+def _check_inputs(a_ref: float, h: float, rigid_base: bool) -> None:
     if not (a_ref > 0 and math.isfinite(a_ref)):
         raise CoatHertzError(f"a_ref must be a finite length > 0, got {a_ref!r}")
     if not (h >= 0 and math.isfinite(h)):
         raise CoatHertzError(f"h must be a finite length >= 0, got {h!r}")
     if rigid_base and h <= 0:
         raise CoatHertzError("a rigid substrate needs a coating of thickness h > 0")
+
+
+def _band(a_ref: float, h: float, spec: MeshSpec) -> tuple[float, float, int]:
+    """Edge spacing ``s_e``, band half-width ``w`` and the number of band elements."""
+    s_e, w = edge_band(a_ref, h, spec)
+    w = min(w, 0.5 * (spec.r_fine - 1.0) * a_ref)  # the band stays inside the fine zone (r_fine >= 1.05)
+    n_band = round(2 * w / s_e) if s_e < a_ref / spec.n_a else 0
+    return s_e, w, n_band
+
+
+#: Above this many elements in the edge band :func:`mesh_size` does not build the grids (a
+#: lower bound is enough to refuse the mesh; H = 1e-6 asks for 6.7e5 at the default level).
+BAND_CAP = 200_000
+
+
+@dataclass(frozen=True)
+class MeshSize:
+    """Element counts of the tensor-product mesh (``n_r`` x ``n_t``) and derived dof counts.
+
+    ``exact`` is False when the counts are a lower bound (edge band beyond :data:`BAND_CAP`).
+    """
+
+    n_r: int
+    n_t: int
+    n_t_coating: int
+    exact: bool = True
+
+    @property
+    def elements(self) -> int:
+        return self.n_r * self.n_t
+
+    @property
+    def displacement_dofs(self) -> int:
+        """Q2 vector dofs: two per node of the ``(2 n_r + 1) x (2 n_t + 1)`` node grid."""
+        return 2 * (2 * self.n_r + 1) * (2 * self.n_t + 1)
+
+    def pressure_dofs(self, coating_mixed: bool, substrate_mixed: bool) -> int:
+        """Q1 pressure dofs of the mixed regions (one node set per region)."""
+        n = 0
+        if coating_mixed:
+            n += (self.n_r + 1) * (self.n_t_coating + 1)
+        if substrate_mixed:
+            n += (self.n_r + 1) * (self.n_t - self.n_t_coating + 1)
+        return n
+
+
+def mesh_size(a_ref: float, h: float, spec: MeshSpec, rigid_base: bool = False) -> MeshSize:
+    """Element counts of :func:`build_mesh` without building the mesh (and without building the
+    grids when the edge band alone exceeds :data:`BAND_CAP`): the input of the memory guard."""
+    _check_inputs(a_ref, h, rigid_base)
+    _, _, n_band = _band(a_ref, h, spec)
+    if n_band > BAND_CAP:
+        return MeshSize(n_band, spec.n_coat, spec.n_coat, exact=False)
+    r, t = grids(a_ref, h, spec, rigid_base)
+    n_tc = int(np.sum(t[1:] <= h * (1 + 1e-12))) if h > 0 else 0
+    return MeshSize(len(r) - 1, len(t) - 1, n_tc)
+
+
+def grids(a_ref: float, h: float, spec: MeshSpec, rigid_base: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """The radial grid ``r`` and the depth grid ``t = -z`` of :func:`build_mesh` (see module docstring)."""
+    _check_inputs(a_ref, h, rigid_base)
     s0 = a_ref / spec.n_a
     q = spec.growth
     L = spec.L * max(a_ref, h)
     r_f = spec.r_fine * a_ref
-    s_e, w = edge_band(a_ref, h, spec)
-    w = min(w, 0.5 * (r_f - a_ref))  # the band stays inside the fine zone (r_fine >= 1.05)
+    s_e, w, n_band = _band(a_ref, h, spec)
+    if n_band > BAND_CAP:
+        raise CoatHertzError(
+            f"mesh generator: the contact-edge band of a coating with h/a_ref = {h / a_ref:.3g} would need"
+            f" {n_band} elements across (> {BAND_CAP}); check the size first with mesh_size()"
+        )
     if s_e < s0:
         # thin coating: the pressure edge has a boundary layer of width ~h; resolve it with
         # spacing s_e in the band |r - a_ref| <= w, grading back to s0 on both sides
         left = (a_ref - w) - graded(0.0, a_ref - w, s_e * q, q, s0)[::-1]
-        band = np.linspace(a_ref - w, a_ref + w, round(2 * w / s_e) + 1)
+        band = np.linspace(a_ref - w, a_ref + w, n_band + 1)
         right = graded(a_ref + w, r_f, s_e * q, q, s0)
         r_fine = _join(left, band, right)
     else:
@@ -232,9 +286,19 @@ def build_mesh(a_ref: float, h: float, spec: MeshSpec, rigid_base: bool = False)
     else:
         D = L
         t = _join(np.linspace(0.0, t_f, round(t_f / s0) + 1), graded(t_f, D, s0 * q, q))
-    z = -t[::-1]
     check_spacing(r, "r")
     check_spacing(t, "depth")
+    return r, t
+
+
+def build_mesh(a_ref: float, h: float, spec: MeshSpec, rigid_base: bool = False) -> LayeredMesh:
+    """Graded tensor-product mesh for a contact of radius about ``a_ref`` on a coating of
+    thickness ``h`` (0: homogeneous body) over an elastic (or, ``rigid_base``, rigid) substrate."""
+    r, t = grids(a_ref, h, spec, rigid_base)
+    L = spec.L * max(a_ref, h)
+    D = h if rigid_base else L
+    r_f = spec.r_fine * a_ref
+    z = -t[::-1]
     mesh = MeshQuad.init_tensor(r, z)
     zc = mesh.p[1, mesh.t].mean(axis=0)
     coating = np.nonzero(zc > -h)[0] if h > 0 else np.array([], dtype=np.int64)

@@ -97,10 +97,6 @@ class FEModel:
         return dofs, vals[idx]
 
     # -- assembly ------------------------------------------------------------------------
-    def _field(self, region: Region, values: float) -> np.ndarray:
-        nq = self.basis.X.shape[-1]
-        return np.full((len(region.elements), nq), values)
-
     def stiffness(self) -> sp.csr_matrix:
         """System matrix of the linear-elastic model (displacement + mixed-region pressures)."""
         if self._K is not None:
