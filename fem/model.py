@@ -20,6 +20,7 @@ from skfem import Basis, ElementQuad1, ElementQuad2, ElementVector, FacetBasis, 
 from coathertz.fem import forms
 from coathertz.fem.material import LinearElastic, MaterialLaw
 from coathertz.fem.mesh import LayeredMesh
+from coathertz.fem.ordering import grid_indices
 from coathertz.materials import Material
 
 INTORDER = 4
@@ -50,6 +51,7 @@ class FEModel:
         self.basis = Basis(mesh, ElementVector(ElementQuad2()), intorder=INTORDER)
         self.n_u = self.basis.N
         self._p_blocks = []  # (pressure dofs, coupling, compliance, scale) per mixed region
+        self._p_locs: list[np.ndarray] = []  # (r, z) of the pressure dofs of each mixed region
         self._K: sp.csr_matrix | None = None
         locs = self.basis.doflocs
         self.r_dof, self.z_dof = locs[0], locs[1]
@@ -107,6 +109,7 @@ class FEModel:
         lam = np.zeros((nel, nq))
         mu = np.zeros((nel, nq))
         blocks = []
+        p_locs = []
         for reg in self.regions:
             if not isinstance(reg.law, LinearElastic):
                 raise TypeError("stiffness() is the linear-elastic fast path; use loading.tangent")
@@ -122,14 +125,26 @@ class FEModel:
                 pd = np.unique(pb.element_dofs)
                 # unknown p_hat = p / mu: balances the saddle-point blocks for the factorisation
                 blocks.append((pd, mu_r * Bm.tocsc()[:, pd], mu_r**2 * C.tocsr()[pd][:, pd], mu_r))
-        K = asm(forms.elasticity, self.basis, lam=lam, mu=mu)
+                p_locs.append(pb.doflocs[:, pd])
+        K = forms.assemble_elasticity(self.basis, lam, mu)  # == asm(forms.elasticity, ...), faster
         self._p_blocks = blocks
+        self._p_locs = p_locs
         if blocks:
             cols = sp.hstack([b[1] for b in blocks])
             C = sp.block_diag([b[2] for b in blocks])
             K = sp.bmat([[K, cols], [cols.T, C]])
         self._K = sp.csr_matrix(K)
         return self._K
+
+    def dof_locations(self) -> np.ndarray:
+        """``(r, z)`` of every unknown of :meth:`stiffness` (``[2, n_dofs]``; call it after assembly)."""
+        return np.hstack([self.basis.doflocs, *self._p_locs])
+
+    def dof_grid(self) -> tuple[np.ndarray, np.ndarray]:
+        """Indices ``(i, j)`` of every unknown's node in the tensor grid of Q2 nodes (the
+        geometry the condensed solve orders by, :mod:`coathertz.fem.ordering`)."""
+        loc = self.dof_locations()
+        return grid_indices(loc[0]), grid_indices(loc[1])
 
     def near_null_space(self, free: np.ndarray) -> np.ndarray:
         """Near-null space for smoothed aggregation on the ``free`` dofs: ``u_z = 1``, ``u_r = 1``."""
