@@ -20,7 +20,8 @@ def _pair(case, **kw):
 
 @pytest.mark.parametrize(
     ("which", "kw"),
-    [("coated", {}), ("coated", {"contact": "penalty"}), ("rigid_base_05", {}), ("incompressible_coating", {})],
+    [("coated", {}), ("coated", {"contact": "penalty"}), ("rigid_base_05", {}),
+     ("incompressible_coating", {})],
 )
 def test_condensed_equals_refactorising_path(fx, which, kw):
     """Displacement form: delta, a, p0 equal to 1e-10 (measured <= 1e-11; benchmark at the default
