@@ -49,6 +49,12 @@ class MeshSpec:
         Thin coatings: element size at the contact edge is ``edge * h / n_a`` if smaller than
         ``a_ref / n_a`` (so ``n_a / edge`` elements per coating thickness there). Measured:
         without it the contact radius of H = 0.03 coatings erred by 0.3-0.5 % at n_a = 40.
+    edge_refine
+        Every mesh has a band ``|r - a_ref| <= 0.15 a_ref`` of spacing ``s0 / edge_refine`` at
+        the contact edge (``1``: none; thin coatings use the finer ``edge`` rule). Measured on
+        thin layers bonded to a rigid base (H = h/a0c 0.05-0.5, nu_c 0.4-0.5, n_a = 40) against
+        the exact axisymmetric solution, max |error in a|: 0.30 % without, 0.12 % with 2,
+        0.054 % with 3 (for 30 % more unknowns than without).
     """
 
     n_a: int = 40
@@ -58,6 +64,7 @@ class MeshSpec:
     L: float = 40.0
     n_coat: int = 4
     edge: float = 6.0
+    edge_refine: float = 3.0
 
     def __post_init__(self) -> None:
         if not (isinstance(self.n_a, int | np.integer) and 4 <= self.n_a <= 2000):
@@ -75,6 +82,8 @@ class MeshSpec:
                 f"L must be at least 2 max(r_fine, t_fine) = {2.0 * max(self.r_fine, self.t_fine):g}"
                 f" (units of a), got {self.L!r}"
             )
+        if not (1.0 <= self.edge_refine <= 10.0):
+            raise CoatHertzError(f"edge_refine must be in [1, 10], got {self.edge_refine!r}")
         if not (0.5 <= self.edge <= 1e3):
             raise CoatHertzError(f"edge must be in [0.5, 1000], got {self.edge!r}")
         if not (isinstance(self.n_coat, int | np.integer) and 1 <= self.n_coat <= 100):
@@ -147,11 +156,17 @@ class LayeredMesh:
 
 
 def edge_band(a_ref: float, h: float, spec: MeshSpec) -> tuple[float, float]:
-    """Spacing ``s_e = min(s0, edge * h / n_a)`` at the contact edge and the band half-width
-    ``w = min(0.15 a_ref, max(0.05 a_ref, 5 h))`` (only used when ``s_e < s0``)."""
+    """Spacing ``s_e`` at the contact edge and the band half-width ``w`` (a band only when ``s_e < s0``).
+
+    Thin coatings (``edge * h / n_a < s0 / edge_refine``): ``s_e = edge * h / n_a`` and
+    ``w = min(0.15 a_ref, max(0.05 a_ref, 5 h))``; otherwise ``s_e = s0 / edge_refine`` and
+    ``w = 0.15 a_ref`` (no band at ``edge_refine = 1``).
+    """
     s0 = a_ref / spec.n_a
-    s_e = min(s0, spec.edge * h / spec.n_a) if h > 0 else s0
-    return s_e, min(0.15 * a_ref, max(0.05 * a_ref, 5.0 * h))
+    s_thin = spec.edge * h / spec.n_a
+    if h > 0 and s_thin < s0 / spec.edge_refine:
+        return s_thin, min(0.15 * a_ref, max(0.05 * a_ref, 5.0 * h))
+    return s0 / spec.edge_refine, 0.15 * a_ref
 
 
 #: Largest ratio of adjacent element sizes :func:`build_mesh` may produce (a guard against
@@ -269,7 +284,8 @@ def grids(a_ref: float, h: float, spec: MeshSpec, rigid_base: bool = False) -> t
             # Otherwise a sliver element of thickness |h - t_f| is left between the two (issue 9:
             # h = t_f (1 + 1e-12), i.e. H = 0.5 at a_ref = a0c, made the system exactly singular).
             t_f = h
-        n_c = max(spec.n_coat, math.ceil(min(h, t_f) / min(s0, s_e) - 1e-9))
+        s_c = min(s0, spec.edge * h / spec.n_a)  # depth spacing in the coating (edge_refine: radial only)
+        n_c = max(spec.n_coat, math.ceil(min(h, t_f) / s_c - 1e-9))
         if h <= t_f:
             t = np.linspace(0.0, h, n_c + 1)
             below = h

@@ -137,8 +137,9 @@ class FEMMethod:
 
     name = "fem"
 
-    #: One factorisation per contact problem (condensed solve, :mod:`coathertz.fem.contact`);
-    #: False restores the refactorising active-set path (kept for the benchmark's before/after).
+    #: One factorisation per contact problem (condensed solve, :mod:`coathertz.fem.contact`) and
+    #: the vectorised assembly; False restores the refactorising active-set path and skfem's generic
+    #: assembly (the path before issue 13 item 4, kept for the benchmark's before/after in one run).
     _reuse_factorisation: bool = True
 
     def __init__(
@@ -287,7 +288,8 @@ class FEMMethod:
         while True:
             self.check_size(a_ref, body, eq.R)
             lm = build_mesh(a_ref, h, self.spec, rigid_base)
-            model = FEModel(lm, self._regions(lm, body), ff_mat, FARFIELDS[self.farfield]())
+            model = FEModel(lm, self._regions(lm, body), ff_mat, FARFIELDS[self.farfield](),
+                            legacy_assembly=not self._reuse_factorisation)
             if any(reg.mixed for reg in model.regions):
                 solver = DirectSolver(symmetric_mode=False)  # indefinite saddle point
             else:

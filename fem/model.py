@@ -43,6 +43,7 @@ class FEModel:
     regions: list[Region]
     farfield_material: Material | None
     farfield: object
+    legacy_assembly: bool = False  # skfem's generic assembly (the benchmark's "before" path)
     basis: Basis = field(init=False)
     n_u: int = field(init=False)
 
@@ -126,7 +127,10 @@ class FEModel:
                 # unknown p_hat = p / mu: balances the saddle-point blocks for the factorisation
                 blocks.append((pd, mu_r * Bm.tocsc()[:, pd], mu_r**2 * C.tocsr()[pd][:, pd], mu_r))
                 p_locs.append(pb.doflocs[:, pd])
-        K = forms.assemble_elasticity(self.basis, lam, mu)  # == asm(forms.elasticity, ...), faster
+        if self.legacy_assembly:
+            K = asm(forms.elasticity, self.basis, lam=lam, mu=mu)
+        else:
+            K = forms.assemble_elasticity(self.basis, lam, mu)  # == asm(forms.elasticity, ...), faster
         self._p_blocks = blocks
         self._p_locs = p_locs
         if blocks:
