@@ -74,6 +74,7 @@ class ContactProblem:
     s0: float
     near_null: object = None
     grid: tuple[np.ndarray, np.ndarray] | None = None
+    extra: tuple[np.ndarray, np.ndarray] | None = None  # (compliance, displacement) added on cand
 
 
 @dataclass
@@ -149,7 +150,11 @@ class Condensed:
             return None
         G = np.linalg.inv(cf.S)
         u0 = cf.solve(rhs0)
-        return cls(prob, free, rhs0, cf.solve, 0.5 * (G + G.T), u0[pos])
+        u0_c = u0[pos]
+        if prob.extra is not None:  # a second body's candidates in series (TwoBody)
+            G = G + prob.extra[0]
+            u0_c = u0_c + prob.extra[1]
+        return cls(prob, free, rhs0, cf.solve, 0.5 * (G + G.T), u0_c)
 
     def step(self, active: np.ndarray, compliance: np.ndarray | None = None):
         """``(None, u_C, delta, lambda)`` for the active set (``compliance``: penalty ``1/eps``)."""
@@ -167,7 +172,7 @@ class Condensed:
         x = np.linalg.solve(M, rhs)
         lam = np.zeros(len(active))
         lam[A] = x[:nA]
-        u_c = self.u0_c - self.G[:, A] @ x[:nA]
+        u_c = self.u0_c - self.G[:, A] @ x[:nA]  # both bodies' displacements (TwoBody)
         return None, u_c, float(x[nA]), lam
 
     def full(self, lam: np.ndarray, delta: float) -> np.ndarray:
@@ -178,6 +183,51 @@ class Condensed:
         u[self.prob.fixed] = self.prob.fixed_values
         u[self.free] = self.solve(b)
         return u
+
+
+@dataclass(frozen=True)
+class TwoBody:
+    """A contact formulation with a second elastic body (the indenter) in series.
+
+    The indenter is a model of its own whose surface candidates sit at the same radii as the
+    body's. Pressed by the nodal forces ``lambda`` (the same as on the body, opposite in
+    direction) its candidates move by ``u1 = u1_0 - G1 lambda`` (``u1_0``: its far-field boundary
+    values alone; ``G1``: its condensed compliance, one factorisation). The gap becomes
+    ``g0 - delta - u_C - u1``, i.e. the body's ``u0_C`` and ``G`` plus ``u1_0`` and ``G1``:
+    ``ContactProblem.extra``. Only the condensed solve supports it.
+    """
+
+    inner: object
+    G1: np.ndarray
+    u1_0: np.ndarray
+    name: str = "two-body"
+
+    @classmethod
+    def build(cls, inner, model, W: float, r_cand: np.ndarray) -> TwoBody:
+        from coathertz.fem.solvers import DirectSolver
+
+        cand = model.candidates
+        if len(cand) != len(r_cand) or not np.allclose(model.r_dof[cand], r_cand, rtol=0,
+                                                       atol=1e-9 * r_cand.max()):
+            raise ValueError("the indenter's surface nodes do not match the body's")
+        K = model.stiffness()
+        fixed, vals = model.dirichlet(W)
+        z = np.zeros(len(cand))
+        prob = ContactProblem(K, np.zeros(K.shape[0]), fixed, vals, cand, r_cand, z, z, W, 1.0, 1.0,
+                              grid=model.dof_grid())
+        cond = Condensed.build(prob, DirectSolver())
+        if cond is None:
+            raise ValueError("the indenter's stiffness could not be condensed")
+        return cls(inner, cond.G, cond.u0_c)
+
+    @property
+    def reuse(self) -> bool:
+        return True
+
+    def solve(self, prob: ContactProblem, solver, active0: np.ndarray) -> ContactSolution:
+        from dataclasses import replace
+
+        return self.inner.solve(replace(prob, extra=(self.G1, self.u1_0)), solver, active0)
 
 
 def _loop(prob: ContactProblem, solver, step, update, active: np.ndarray, maxiter: int,
@@ -220,6 +270,11 @@ def _loop(prob: ContactProblem, solver, step, update, active: np.ndarray, maxite
     )
 
 
+def _no_extra(prob: ContactProblem) -> None:
+    if prob.extra is not None:
+        raise ValueError("a second body (TwoBody) needs the condensed solve: the direct solver")
+
+
 def _finished(sol: ContactSolution, finish) -> ContactSolution:
     if sol.u is None:
         sol.u = finish(sol.lam, sol.delta)
@@ -247,6 +302,7 @@ class ActiveSet:
     def solve(self, prob: ContactProblem, solver, active0: np.ndarray) -> ContactSolution:
         cond = Condensed.build(prob, solver) if self.reuse else None
         if cond is None:
+            _no_extra(prob)
             return _loop(prob, solver, _legacy(self._step), self._update, active0.copy(), self.maxiter)
         return _loop(prob, solver, lambda p, s, a: cond.step(a), self._update, active0.copy(), self.maxiter,
                      finish=cond.full)
@@ -284,6 +340,7 @@ class Penalty:
     def solve(self, prob: ContactProblem, solver, active0: np.ndarray) -> ContactSolution:
         cond = Condensed.build(prob, solver) if self.reuse else None
         if cond is None:
+            _no_extra(prob)
             return _loop(prob, solver, _legacy(self._step), self._update, active0.copy(), self.maxiter)
         with np.errstate(divide="ignore"):
             compliance = 1.0 / self._eps(prob, np.ones(len(prob.cand), dtype=bool))

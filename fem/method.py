@@ -9,7 +9,14 @@ Supported cases (``supports``): circular contacts in which
   assumption both carry the same pressure and deform alike, so the pair is one body under a
   rigid paraboloid of radius ``2 R`` with half the approach (``delta = 2 delta_1``).
 
-An elastic indenter on a different elastic body is not supported (it would need both meshed).
+* an elastic homogeneous indenter on a different elastic body, coated or not: both bodies are
+  meshed as half-spaces under the same small-strain assumptions, with matching surface nodes
+  (the indenter's mesh reuses the body's radial grid), and the contact couples them node to
+  node: the gap is ``g0(r) - delta - u_z(body) - u_z(indenter)`` with equal and opposite nodal
+  forces, ``g0 = r^2 / 2R`` with the case's relative radius. In the condensed contact solve the
+  indenter enters as its own candidates' compliance added to the body's
+  (:class:`coathertz.fem.contact.TwoBody`). Checked against Hertz (two different homogeneous
+  bodies) and the DC-FFT (Section 6 B4C example) in ``tests/fem/test_two_body.py``.
 """
 
 from __future__ import annotations
@@ -26,11 +33,11 @@ import numpy as np
 from coathertz import errors
 from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError, ConvergenceError
-from coathertz.fem.contact import ActiveSet, Penalty
+from coathertz.fem.contact import ActiveSet, Penalty, TwoBody
 from coathertz.fem.farfield import BoussinesqFarField, FixedFarField
 from coathertz.fem.loading import LoadPath, solve_incremental
 from coathertz.fem.material import LinearElastic
-from coathertz.fem.mesh import MESH_LEVELS, MeshSize, build_mesh, edge_band, mesh_size
+from coathertz.fem.mesh import MESH_LEVELS, MeshSize, build_companion, build_mesh, edge_band, mesh_size
 from coathertz.fem.model import FEModel, Region
 from coathertz.fem.post import contact_radius, peak_pressure, stress_report, surface_pressure
 from coathertz.fem.solvers import AMGSolver, DirectSolver
@@ -50,6 +57,7 @@ class Equivalent:
     body: Body
     R: float
     delta_factor: float
+    indenter: Material | None = None  # an elastic homogeneous indenter, modelled as a second body
 
 
 def axisymmetric_equivalent(case: ContactCase) -> Equivalent | None:
@@ -63,6 +71,9 @@ def axisymmetric_equivalent(case: ContactCase) -> Equivalent | None:
         return Equivalent(b1, case.R, 1.0)
     if b1.material == b2.material and b1.coating == b2.coating and not b1.is_rigid:
         return Equivalent(b1, 2.0 * case.R, 2.0)
+    for ind, other in ((b1, b2), (b2, b1)):
+        if not ind.is_coated and not ind.material.is_rigid and not other.is_rigid:
+            return Equivalent(other, case.R, 1.0, indenter=ind.material)
     return None
 
 
@@ -246,18 +257,32 @@ class FEMMethod:
             f" {self.max_memory_gb:g} GiB. Cause: {cause}. To change: {hint}."
         )
 
+    def _indenter(self, lm, mat: Material, W: float, contact, r_c: np.ndarray) -> TwoBody:
+        """The indenter's half-space model on the body's radial grid, condensed on its candidates."""
+        im = build_companion(lm)
+        region = Region(np.arange(im.n_elements), LinearElastic(mat.E, mat.nu), self._is_mixed(mat))
+        model = FEModel(im, [region], mat, FARFIELDS[self.farfield]())
+        if not self._reuse_factorisation:
+            raise CoatHertzError("an elastic indenter needs the condensed contact solve")
+        return TwoBody.build(contact, model, W, r_c)
+
     def _is_mixed(self, m: Material) -> bool:
         return self.mixed == "always" or (self.mixed == "auto" and m.nu >= 0.45)
 
     def _predict_a(self, eq: Equivalent, W: float) -> float:
         body = eq.body
         h = body.coating.h if body.is_coated else 0.0
+        c_ind = eq.indenter.compliance if eq.indenter is not None else 0.0
+
+        def E_pair(m: Material) -> float:  # the pair's E* (eq 2) with an elastic indenter
+            return 1.0 / (m.compliance + c_ind) if (m.compliance + c_ind) > 0 else math.inf
+
         if h == 0:
-            return float(hertz_circular(W, eq.R, body.material.E_star).a0)
-        a_c = float(hertz_circular(W, eq.R, body.coating.material.E_star).a0)
-        if body.material.is_rigid:
+            return float(hertz_circular(W, eq.R, E_pair(body.material)).a0)
+        a_c = float(hertz_circular(W, eq.R, E_pair(body.coating.material)).a0)
+        if body.material.is_rigid and c_ind == 0:
             return a_c
-        a_s = float(hertz_circular(W, eq.R, body.material.E_star).a0)
+        a_s = float(hertz_circular(W, eq.R, E_pair(body.material)).a0)
         wgt = 1.0 - math.exp(-h / a_s)
         return a_s + (a_c - a_s) * wgt
 
@@ -269,8 +294,8 @@ class FEMMethod:
         eq = axisymmetric_equivalent(case)
         if eq is None:
             raise CoatHertzError(
-                "fem supports circular contacts of a rigid uncoated indenter with an elastic (coated) body,"
-                " or of two identical bodies; got: " + case.describe()
+                "fem supports circular contacts of a rigid or elastic uncoated indenter with an elastic"
+                " (coated) body, or of two identical bodies; got: " + case.describe()
             )
         t0 = time.perf_counter()
         body = eq.body
@@ -297,6 +322,8 @@ class FEMMethod:
             r_c = model.r_dof[model.candidates]
             active0 = r_c <= a_ref
             contact = replace(CONTACTS[self.contact](self.penalty_beta), reuse=self._reuse_factorisation)
+            if eq.indenter is not None:
+                contact = self._indenter(lm, eq.indenter, case.W, contact, r_c)
             path = solve_incremental(
                 model, contact, solver, case.W, g0, E_ref,
                 a_ref / self.spec.n_a, n_steps=self.n_steps, active0=active0,
