@@ -10,7 +10,7 @@ import pytest
 from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError
 from coathertz.fem.method import FEMMethod
-from coathertz.materials import Body, Material
+from coathertz.materials import Body, Coating, Material
 from coathertz.methods import Method, get_method
 
 
@@ -22,7 +22,10 @@ def test_protocol_and_registry(fx):
     ell = ContactCase(Body.rigid_sphere(0.01), Body(fx.STEEL, None, 0.02, 0.005), 10.0)
     assert not m.supports(ell)
     two = ContactCase(Body.sphere(fx.STEEL, 0.01), Body.half_space(Material(100e9, 0.3)), 10.0)
-    assert not m.supports(two)
+    assert m.supports(two)  # an elastic indenter: both bodies meshed (test_two_body.py)
+    coated_pair = ContactCase(Body.sphere(fx.STEEL, 0.01, Coating(Material(300e9, 0.3), 1e-5)),
+                              Body.half_space(Material(100e9, 0.3), Coating(Material(50e9, 0.3), 1e-5)), 10.0)
+    assert not m.supports(coated_pair)
     with pytest.raises(CoatHertzError, match="circular"):
         m.solve(ell)
 
