@@ -141,7 +141,11 @@ class LayeredMesh:
     r_fine
         Radius of the fine zone [m]: contact candidates live at ``r <= r_fine``.
     rigid_base
-        True if the bottom ``z = -D = -h`` is bonded to a rigid substrate.
+        True if the bottom ``z = -D = -h`` rests on a rigid substrate.
+    interface
+        ``bonded`` or ``frictionless`` coating/substrate interface. Frictionless with an elastic
+        substrate: the two regions have their own nodes on ``z = -h`` (tied in ``u_z`` by
+        :class:`coathertz.fem.model.FEModel`); on a rigid base only ``u_z = 0`` is imposed there.
     """
 
     mesh: MeshQuad
@@ -154,6 +158,7 @@ class LayeredMesh:
     r_fine: float
     rigid_base: bool
     spec: MeshSpec
+    interface: str = "bonded"
 
     @property
     def n_elements(self) -> int:
@@ -312,19 +317,30 @@ def grids(a_ref: float, h: float, spec: MeshSpec, rigid_base: bool = False) -> t
     return r, t
 
 
-def build_mesh(a_ref: float, h: float, spec: MeshSpec, rigid_base: bool = False) -> LayeredMesh:
+def build_mesh(
+    a_ref: float, h: float, spec: MeshSpec, rigid_base: bool = False, interface: str = "bonded"
+) -> LayeredMesh:
     """Graded tensor-product mesh for a contact of radius about ``a_ref`` on a coating of
-    thickness ``h`` (0: homogeneous body) over an elastic (or, ``rigid_base``, rigid) substrate."""
+    thickness ``h`` (0: homogeneous body) over an elastic (or, ``rigid_base``, rigid) substrate;
+    ``interface = 'frictionless'``: separate nodes for the two regions on ``z = -h``."""
+    if interface not in ("bonded", "frictionless"):
+        raise CoatHertzError(f"interface must be 'bonded' or 'frictionless', got {interface!r}")
     r, t = grids(a_ref, h, spec, rigid_base)
     L = spec.L * max(a_ref, h)
     D = h if rigid_base else L
     r_f = spec.r_fine * a_ref
     z = -t[::-1]
-    mesh = MeshQuad.init_tensor(r, z)
+    if interface == "frictionless" and h > 0 and not rigid_base:
+        k = int(np.argmin(np.abs(t - h)))
+        sub = MeshQuad.init_tensor(r, -t[k:][::-1])
+        coat = MeshQuad.init_tensor(r, -t[: k + 1][::-1])
+        mesh = MeshQuad(np.hstack([coat.p, sub.p]), np.hstack([coat.t, sub.t + coat.p.shape[1]]))
+    else:
+        mesh = MeshQuad.init_tensor(r, z)
     zc = mesh.p[1, mesh.t].mean(axis=0)
     coating = np.nonzero(zc > -h)[0] if h > 0 else np.array([], dtype=np.int64)
     substrate = np.nonzero(zc <= -h)[0] if not rigid_base else np.array([], dtype=np.int64)
-    return LayeredMesh(mesh, coating, substrate, a_ref, h, L, D, r_f, rigid_base, spec)
+    return LayeredMesh(mesh, coating, substrate, a_ref, h, L, D, r_f, rigid_base, spec, interface)
 
 
 def build_companion(lm: LayeredMesh) -> LayeredMesh:

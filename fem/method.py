@@ -139,6 +139,9 @@ class FEMMethod:
         How often the mesh may be rebuilt around the computed contact radius.
     n_a, L
         Override the mesh level's elements across ``a`` and domain size (units of max(a, h)).
+    interface
+        Coating/substrate interface: ``bonded`` (the paper's model) or ``frictionless`` (normal
+        displacement continuous, tangential slip free; elastic or rigid substrate).
     max_memory_gb
         Memory budget of one solve [GiB] (default: half the physical memory, at most 8). The
         unknowns and memory are estimated from the mesh size before anything is built
@@ -167,6 +170,7 @@ class FEMMethod:
         n_a: int | None = None,
         L: float | None = None,
         max_memory_gb: float | None = None,
+        interface: str = "bonded",
     ) -> None:
         spec = _choice("mesh", mesh, MESH_LEVELS)
         over = {k: v for k, v in (("n_a", n_a), ("L", L)) if v is not None}
@@ -176,6 +180,8 @@ class FEMMethod:
         _choice("solver", solver, SOLVERS)
         _choice("farfield", farfield, FARFIELDS)
         _choice("mixed", mixed, {"auto": 0, "always": 1, "never": 2})
+        _choice("interface", interface, {"bonded": 0, "frictionless": 1})
+        self.interface = interface
         if not (isinstance(penalty_beta, int | float) and 0 < penalty_beta < math.inf):
             raise CoatHertzError(f"penalty_beta must satisfy 0 < penalty_beta < inf, got {penalty_beta!r}")
         if not (isinstance(n_steps, int) and 1 <= n_steps <= 1000):
@@ -197,6 +203,8 @@ class FEMMethod:
             s["penalty_beta"] = self.penalty_beta
         if self.mixed != "auto":
             s["mixed"] = self.mixed
+        if self.interface != "bonded":
+            s["interface"] = self.interface
         s.update(self.overrides)
         return s
 
@@ -312,10 +320,10 @@ class FEMMethod:
         active0 = None
         while True:
             self.check_size(a_ref, body, eq.R)
-            lm = build_mesh(a_ref, h, self.spec, rigid_base)
+            lm = build_mesh(a_ref, h, self.spec, rigid_base, self.interface)
             model = FEModel(lm, self._regions(lm, body), ff_mat, FARFIELDS[self.farfield](),
                             legacy_assembly=not self._reuse_factorisation)
-            if any(reg.mixed for reg in model.regions):
+            if any(reg.mixed for reg in model.regions) or model.tie.shape[1]:
                 solver = DirectSolver(symmetric_mode=False)  # indefinite saddle point
             else:
                 solver = SOLVERS[self.solver]()
