@@ -100,3 +100,16 @@ def test_refinement_zone_is_replaced_around_computed_radius(fx):
     assert r.meta["remeshes"] >= 1
     assert r.meta["elements_across_a"] >= 0.85 * 20
     assert r.a < 0.8 * case.a0c
+
+
+def test_large_contact_warns_and_records_validity(fx):
+    """a/R > 0.1: the half-space and small-strain assumptions fail (team convention)."""
+    import warnings
+
+    case = fx.hertz_case(W=2e5)  # a ~ 0.19 R
+    with warnings.catch_warnings(record=True) as rec:
+        warnings.simplefilter("always")
+        r = FEMMethod(mesh="coarse").solve(case)
+    assert r.a / case.R > 0.1
+    assert "a/R" in r.meta["validity"] and any("a/R" in str(w.message) for w in rec)
+    assert "validity" not in fx.solve(fx.hertz_case(), mesh="coarse").meta
