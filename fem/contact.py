@@ -45,6 +45,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
+from numpy.linalg import LinAlgError
+from scipy.linalg import cho_factor, cho_solve
 
 from coathertz.errors import ConvergenceError
 
@@ -162,18 +164,26 @@ class Condensed:
         if compliance is not None:
             A = A[np.isfinite(compliance[A])]  # no spring (zero nodal area, the axis node): no force
         nA = len(A)
-        M = np.zeros((nA + 1, nA + 1))
-        M[:nA, :nA] = self.G[np.ix_(A, A)]
+        GA = self.G[np.ix_(A, A)]
         if compliance is not None:
-            M[np.arange(nA), np.arange(nA)] += compliance[A]
-        M[:nA, nA] = -1.0
-        M[nA, :nA] = 1.0
-        rhs = np.concatenate([self.u0_c[A] - self.prob.g0[A], [self.prob.W]])
-        x = np.linalg.solve(M, rhs)
+            GA[np.arange(nA), np.arange(nA)] += compliance[A]
+        b = self.u0_c[A] - self.prob.g0[A]
+        try:  # G_AA is symmetric positive definite (a compliance): Cholesky, delta from sum = W
+            cf = cho_factor(GA, check_finite=False)
+            y = cho_solve(cf, np.column_stack([b, np.ones(nA)]), check_finite=False)
+            delta = (self.prob.W - y[:, 0].sum()) / y[:, 1].sum()
+            lam_A = y[:, 0] + delta * y[:, 1]
+        except LinAlgError:  # not positive definite to round-off: the bordered system
+            M = np.zeros((nA + 1, nA + 1))
+            M[:nA, :nA] = GA
+            M[:nA, nA] = -1.0
+            M[nA, :nA] = 1.0
+            x = np.linalg.solve(M, np.concatenate([b, [self.prob.W]]))
+            lam_A, delta = x[:nA], x[nA]
         lam = np.zeros(len(active))
-        lam[A] = x[:nA]
-        u_c = self.u0_c - self.G[:, A] @ x[:nA]  # both bodies' displacements (TwoBody)
-        return None, u_c, float(x[nA]), lam
+        lam[A] = lam_A
+        u_c = self.u0_c - self.G[:, A] @ lam_A  # both bodies' displacements (TwoBody)
+        return None, u_c, float(delta), lam
 
     def full(self, lam: np.ndarray, delta: float) -> np.ndarray:
         """The full displacement for the contact forces ``lam`` (one sparse solve)."""
