@@ -8,9 +8,24 @@ The indenter surface after an approach ``delta`` is ``z = -delta + g0(r)``,
           \\lambda_i g_i = 0, \\qquad \\textstyle\\sum_i \\lambda_i = W ,
 
 ``lambda_i`` pushing the body down (``K u = f - B^T lambda``). ``W`` is prescribed and
-``delta`` comes out: for a fixed active set the problem is linear in ``(u, delta)``, so it is
-solved by superposition ``u = u_1 + delta u_2`` with one factorisation and two solves, and
-``delta`` follows from ``sum(lambda) = W``.
+``delta`` comes out.
+
+Condensed solve (default, issue 13 item 4): the stiffness is factorised once per contact
+problem, with the candidates ordered last, and the trailing block of the factors is the
+stiffness condensed on the candidates, ``S`` (:class:`coathertz.fem.solvers.CondensedFactor`);
+its inverse ``G = S^{-1}`` is the candidates' compliance. With ``u0 = K^{-1} f`` (essential values
+included) the candidates' displacement is ``u_C = u0_C - G lambda`` and, for an active set ``A``,
+
+    [G_AA + D_A   -1] [lambda_A]   [u0_A - g0_A]
+    [   1^T        0] [ delta  ] = [     W     ],
+
+a dense system of the size of the active set (``D = 0`` for :class:`ActiveSet`, ``D = diag(1/eps)``
+for :class:`Penalty`). Each active-set iteration costs only that; one more sparse solve gives the
+full displacement at the end. Without the geometry of the unknowns (``grid``) or with an
+iterative solver the legacy path is used: per active set, the active dofs are eliminated and
+the system is refactorised, solved by superposition ``u = u_1 + delta u_2`` (two solves),
+``delta`` from ``sum(lambda) = W``. Both give the same numbers to round-off (measured <= 1e-11,
+``tests/fem/test_contact.py``).
 
 Two strategies share this loop and differ in how the active set enters:
 
@@ -30,6 +45,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
+from numpy.linalg import LinAlgError
+from scipy.linalg import cho_factor, cho_solve
 
 from coathertz.errors import ConvergenceError
 
@@ -41,7 +58,9 @@ class ContactProblem:
     ``K`` the system matrix, ``f`` the right-hand side, ``fixed``/``fixed_values`` essential
     dofs, ``cand`` the candidate ``u_z`` dofs with radii ``r``, area weights ``weights`` and
     obstacle shape ``g0``; ``W`` the load; ``E_star`` and ``s0`` scale the penalty;
-    ``near_null`` builds an AMG near-null space for a set of free dofs.
+    ``near_null`` builds an AMG near-null space for a set of free dofs; ``grid`` holds the
+    ``(r, z)`` node-grid indices of every unknown (:meth:`coathertz.fem.model.FEModel.dof_grid`),
+    needed by the condensed solve (``None``: legacy path).
     """
 
     K: sp.csr_matrix
@@ -56,6 +75,8 @@ class ContactProblem:
     E_star: float
     s0: float
     near_null: object = None
+    grid: tuple[np.ndarray, np.ndarray] | None = None
+    extra: tuple[np.ndarray, np.ndarray] | None = None  # (compliance, displacement) added on cand
 
 
 @dataclass
@@ -100,9 +121,131 @@ def _violation(lam: np.ndarray, gap: np.ndarray, active: np.ndarray, delta: floa
     return max(v_lam, v_gap)
 
 
-def _loop(prob: ContactProblem, solver, step, update, active: np.ndarray, maxiter: int) -> ContactSolution:
+@dataclass
+class Condensed:
+    """A contact problem condensed on its candidates with one factorisation (module docstring)."""
+
+    prob: ContactProblem
+    free: np.ndarray
+    rhs0: np.ndarray  # free part of the right-hand side with the essential values moved over
+    solve: object
+    G: np.ndarray  # compliance of the candidates, S^{-1}
+    u0_c: np.ndarray
+
+    @classmethod
+    def build(cls, prob: ContactProblem, solver) -> Condensed | None:
+        """``None`` if the solver or the problem does not allow it (then: legacy path)."""
+        if prob.grid is None or not hasattr(solver, "condensed"):
+            return None
+        n = prob.K.shape[0]
+        free = np.setdiff1d(np.arange(n), prob.fixed)
+        pos = np.searchsorted(free, prob.cand)
+        if not np.array_equal(free[np.minimum(pos, len(free) - 1)], prob.cand):
+            return None  # a candidate is an essential dof
+        Kr = sp.csr_matrix(prob.K)[free]
+        Kff = Kr[:, free]
+        rhs0 = prob.f[free] - Kr[:, prob.fixed] @ prob.fixed_values
+        try:
+            cf = solver.condensed(Kff, (prob.grid[0][free], prob.grid[1][free]), pos)
+        except (ValueError, RuntimeError):
+            solver.stats["condensed_fallbacks"] = solver.stats.get("condensed_fallbacks", 0) + 1
+            return None
+        G = np.linalg.inv(cf.S)
+        u0 = cf.solve(rhs0)
+        u0_c = u0[pos]
+        if prob.extra is not None:  # a second body's candidates in series (TwoBody)
+            G = G + prob.extra[0]
+            u0_c = u0_c + prob.extra[1]
+        return cls(prob, free, rhs0, cf.solve, 0.5 * (G + G.T), u0_c)
+
+    def step(self, active: np.ndarray, compliance: np.ndarray | None = None):
+        """``(None, u_C, delta, lambda)`` for the active set (``compliance``: penalty ``1/eps``)."""
+        A = np.nonzero(active)[0]
+        if compliance is not None:
+            A = A[np.isfinite(compliance[A])]  # no spring (zero nodal area, the axis node): no force
+        nA = len(A)
+        GA = self.G[np.ix_(A, A)]
+        if compliance is not None:
+            GA[np.arange(nA), np.arange(nA)] += compliance[A]
+        b = self.u0_c[A] - self.prob.g0[A]
+        try:  # G_AA is symmetric positive definite (a compliance): Cholesky, delta from sum = W
+            cf = cho_factor(GA, check_finite=False)
+            y = cho_solve(cf, np.column_stack([b, np.ones(nA)]), check_finite=False)
+            delta = (self.prob.W - y[:, 0].sum()) / y[:, 1].sum()
+            lam_A = y[:, 0] + delta * y[:, 1]
+        except LinAlgError:  # not positive definite to round-off: the bordered system
+            M = np.zeros((nA + 1, nA + 1))
+            M[:nA, :nA] = GA
+            M[:nA, nA] = -1.0
+            M[nA, :nA] = 1.0
+            x = np.linalg.solve(M, np.concatenate([b, [self.prob.W]]))
+            lam_A, delta = x[:nA], x[nA]
+        lam = np.zeros(len(active))
+        lam[A] = lam_A
+        u_c = self.u0_c - self.G[:, A] @ lam_A  # both bodies' displacements (TwoBody)
+        return None, u_c, float(delta), lam
+
+    def full(self, lam: np.ndarray, delta: float) -> np.ndarray:
+        """The full displacement for the contact forces ``lam`` (one sparse solve)."""
+        b = self.rhs0.copy()
+        b[np.searchsorted(self.free, self.prob.cand)] -= lam
+        u = np.zeros(self.prob.K.shape[0])
+        u[self.prob.fixed] = self.prob.fixed_values
+        u[self.free] = self.solve(b)
+        return u
+
+
+@dataclass(frozen=True)
+class TwoBody:
+    """A contact formulation with a second elastic body (the indenter) in series.
+
+    The indenter is a model of its own whose surface candidates sit at the same radii as the
+    body's. Pressed by the nodal forces ``lambda`` (the same as on the body, opposite in
+    direction) its candidates move by ``u1 = u1_0 - G1 lambda`` (``u1_0``: its far-field boundary
+    values alone; ``G1``: its condensed compliance, one factorisation). The gap becomes
+    ``g0 - delta - u_C - u1``, i.e. the body's ``u0_C`` and ``G`` plus ``u1_0`` and ``G1``:
+    ``ContactProblem.extra``. Only the condensed solve supports it.
+    """
+
+    inner: object
+    G1: np.ndarray
+    u1_0: np.ndarray
+    name: str = "two-body"
+
+    @classmethod
+    def build(cls, inner, model, W: float, r_cand: np.ndarray) -> TwoBody:
+        from coathertz.fem.solvers import DirectSolver
+
+        cand = model.candidates
+        if len(cand) != len(r_cand) or not np.allclose(model.r_dof[cand], r_cand, rtol=0,
+                                                       atol=1e-9 * r_cand.max()):
+            raise ValueError("the indenter's surface nodes do not match the body's")
+        K = model.stiffness()
+        fixed, vals = model.dirichlet(W)
+        z = np.zeros(len(cand))
+        prob = ContactProblem(K, np.zeros(K.shape[0]), fixed, vals, cand, r_cand, z, z, W, 1.0, 1.0,
+                              grid=model.dof_grid())
+        cond = Condensed.build(prob, DirectSolver())
+        if cond is None:
+            raise ValueError("the indenter's stiffness could not be condensed")
+        return cls(inner, cond.G, cond.u0_c)
+
+    @property
+    def reuse(self) -> bool:
+        return True
+
+    def solve(self, prob: ContactProblem, solver, active0: np.ndarray) -> ContactSolution:
+        from dataclasses import replace
+
+        return self.inner.solve(replace(prob, extra=(self.G1, self.u1_0)), solver, active0)
+
+
+def _loop(prob: ContactProblem, solver, step, update, active: np.ndarray, maxiter: int,
+          finish=None) -> ContactSolution:
     """Iterate ``step``/``update`` until the active set repeats itself.
 
+    ``step(prob, solver, active)`` returns ``(u, u_C, delta, lambda)``; ``u`` (the full
+    displacement) may be ``None``, then ``finish(lambda, delta)`` computes it for the answer.
     A fixed point ends the loop. A cycle (a set seen before, not the last one) ends it too: the
     member of the cycle with the smallest violation is returned if that violation is below
     :data:`CYCLE_TOL`, else :class:`ConvergenceError` is raised.
@@ -113,20 +256,20 @@ def _loop(prob: ContactProblem, solver, step, update, active: np.ndarray, maxite
     for it in range(1, maxiter + 1):
         if not active.any():
             active = prob.g0 <= prob.g0.min()  # at least the first node touches
-        u, delta, lam = step(prob, solver, active)
-        gap = prob.g0 - delta - u[prob.cand]
+        u, u_c, delta, lam = step(prob, solver, active)
+        gap = prob.g0 - delta - u_c
         new = update(active, lam, gap)
         history.append(int(active.sum()))
         sol = ContactSolution(u, delta, lam, gap, active, it, history)
         if np.array_equal(new, active):
-            return sol
+            return _finished(sol, finish)
         seen[active.tobytes()] = len(sols)
         sols.append((sol, _violation(lam, gap, active, delta)))
         key = new.tobytes()
         if key in seen:  # cycle: sols[seen[key]:] repeat forever
             best, v = min(sols[seen[key]:], key=lambda sv: sv[1])
             if v < CYCLE_TOL:
-                return best
+                return _finished(best, finish)
             raise ConvergenceError(
                 f"contact active set cycles (sizes {history[seen[key]:]}) with violation {v:.2e} "
                 f">= {CYCLE_TOL:g}"
@@ -137,15 +280,42 @@ def _loop(prob: ContactProblem, solver, step, update, active: np.ndarray, maxite
     )
 
 
+def _no_extra(prob: ContactProblem) -> None:
+    if prob.extra is not None:
+        raise ValueError("a second body (TwoBody) needs the condensed solve: the direct solver")
+
+
+def _finished(sol: ContactSolution, finish) -> ContactSolution:
+    if sol.u is None:
+        sol.u = finish(sol.lam, sol.delta)
+    return sol
+
+
+def _legacy(step):
+    """Adapt a full-displacement step ``(u, delta, lambda)`` to the loop's ``(u, u_C, delta, lambda)``."""
+
+    def wrapped(prob, solver, active):
+        u, delta, lam = step(prob, solver, active)
+        return u, u[prob.cand], delta, lam
+
+    return wrapped
+
+
 @dataclass(frozen=True)
 class ActiveSet:
     """Primal-dual active set with Lagrange multipliers (exact constraint)."""
 
     maxiter: int = 50
     name: str = "active-set"
+    reuse: bool = True  # one factorisation per contact problem (condensed solve); False: legacy
 
     def solve(self, prob: ContactProblem, solver, active0: np.ndarray) -> ContactSolution:
-        return _loop(prob, solver, self._step, self._update, active0.copy(), self.maxiter)
+        cond = Condensed.build(prob, solver) if self.reuse else None
+        if cond is None:
+            _no_extra(prob)
+            return _loop(prob, solver, _legacy(self._step), self._update, active0.copy(), self.maxiter)
+        return _loop(prob, solver, lambda p, s, a: cond.step(a), self._update, active0.copy(), self.maxiter,
+                     finish=cond.full)
 
     @staticmethod
     def _step(prob, solver, active):
@@ -175,12 +345,23 @@ class Penalty:
     beta: float = 1e3
     maxiter: int = 50
     name: str = "penalty"
+    reuse: bool = True
 
     def solve(self, prob: ContactProblem, solver, active0: np.ndarray) -> ContactSolution:
-        return _loop(prob, solver, self._step, self._update, active0.copy(), self.maxiter)
+        cond = Condensed.build(prob, solver) if self.reuse else None
+        if cond is None:
+            _no_extra(prob)
+            return _loop(prob, solver, _legacy(self._step), self._update, active0.copy(), self.maxiter)
+        with np.errstate(divide="ignore"):
+            compliance = 1.0 / self._eps(prob, np.ones(len(prob.cand), dtype=bool))
+        return _loop(prob, solver, lambda p, s, a: cond.step(a, compliance), self._update, active0.copy(),
+                     self.maxiter, finish=cond.full)
+
+    def _eps(self, prob, active):
+        return np.where(active, self.beta * prob.E_star * prob.weights / prob.s0, 0.0)
 
     def _step(self, prob, solver, active):
-        eps = np.where(active, self.beta * prob.E_star * prob.weights / prob.s0, 0.0)
+        eps = self._eps(prob, active)
         n = prob.K.shape[0]
         P = sp.csr_matrix((eps, (prob.cand, prob.cand)), shape=(n, n))
         rhs1 = prob.f.copy()

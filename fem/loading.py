@@ -93,6 +93,7 @@ def solve_incremental(
     g0 = g0_fun(r)
     weights = model.weights_all[cand]
     x = np.zeros(n)
+    grid = model.dof_grid() if linear else None  # condensed contact solve (one factorisation)
     states = [reg.law.initial_state(()) for reg in model.regions]
     active = (r <= r[1]) if active0 is None else active0
     newton_total = contact_total = 0
@@ -110,7 +111,7 @@ def solve_incremental(
                 Kt = tangent(model, x, states)
             rhs = -F + Kt @ x
             prob = ContactProblem(
-                Kt, rhs, fixed, vals, cand, r, weights, g0, Wk, E_star, s0, model.near_null_space
+                Kt, rhs, fixed, vals, cand, r, weights, g0, Wk, E_star, s0, model.near_null_space, grid
             )
             sol = contact.solve(prob, solver, active)
             contact_total += sol.iterations

@@ -20,6 +20,7 @@ from skfem import Basis, ElementQuad1, ElementQuad2, ElementVector, FacetBasis, 
 from coathertz.fem import forms
 from coathertz.fem.material import LinearElastic, MaterialLaw
 from coathertz.fem.mesh import LayeredMesh
+from coathertz.fem.ordering import grid_indices
 from coathertz.materials import Material
 
 INTORDER = 4
@@ -42,6 +43,7 @@ class FEModel:
     regions: list[Region]
     farfield_material: Material | None
     farfield: object
+    legacy_assembly: bool = False  # skfem's generic assembly (the benchmark's "before" path)
     basis: Basis = field(init=False)
     n_u: int = field(init=False)
 
@@ -50,6 +52,7 @@ class FEModel:
         self.basis = Basis(mesh, ElementVector(ElementQuad2()), intorder=INTORDER)
         self.n_u = self.basis.N
         self._p_blocks = []  # (pressure dofs, coupling, compliance, scale) per mixed region
+        self._p_locs: list[np.ndarray] = []  # (r, z) of the pressure dofs of each mixed region
         self._K: sp.csr_matrix | None = None
         locs = self.basis.doflocs
         self.r_dof, self.z_dof = locs[0], locs[1]
@@ -66,6 +69,23 @@ class FEModel:
         fb = FacetBasis(mesh, self.basis.elem, facets=top_facets, intorder=INTORDER)
         wz = asm(LinearForm(lambda v, w: v[1] * 2 * np.pi * w.x[0]), fb)
         self.weights_all = wz
+        self.tie = self._tie_pairs()
+
+    def _tie_pairs(self) -> np.ndarray:
+        """Frictionless interface on an elastic substrate: pairs ``[2, n]`` of ``u_z`` dofs at the
+        same point of ``z = -h``, one of each region (not on the outer boundary, which prescribes
+        both). They are tied by Lagrange multipliers in :meth:`stiffness`; ``u_r`` slips freely."""
+        lm = self.lm
+        if lm.interface != "frictionless" or lm.h <= 0 or lm.rigid_base:
+            return np.zeros((2, 0), dtype=np.int64)
+        tol = 1e-9 * lm.a_ref
+        on = np.nonzero((np.abs(self.z_dof + lm.h) < tol) & (self.comp == 1)
+                        & (np.abs(self.r_dof - lm.L) > tol * lm.L / lm.a_ref))[0]
+        on = on[np.lexsort((on, self.r_dof[on]))]
+        pairs = on.reshape(-1, 2).T
+        if not np.allclose(self.r_dof[pairs[0]], self.r_dof[pairs[1]], rtol=0, atol=tol):
+            raise RuntimeError("frictionless interface: unmatched interface nodes (internal error)")
+        return pairs
 
     # -- dofs ----------------------------------------------------------------------------
     @property
@@ -75,7 +95,7 @@ class FEModel:
 
     @property
     def n_dofs(self) -> int:
-        return self.n_u + sum(len(b[0]) for b in self._p_blocks)
+        return self.n_u + sum(len(b[0]) for b in self._p_blocks) + self.tie.shape[1]
 
     def dirichlet(self, W: float) -> tuple[np.ndarray, np.ndarray]:
         """Essential dofs and their values for load ``W``."""
@@ -85,6 +105,11 @@ class FEModel:
         outer = (np.abs(r - self.lm.L) < tol * self.lm.L / self.lm.a_ref) | (
             np.abs(z + self.lm.D) < tol * self.lm.L / self.lm.a_ref
         )
+        if self.lm.rigid_base and self.lm.interface == "frictionless":
+            # the coating slides on the rigid base: only u_z = 0 on the bottom (r = L stays clamped)
+            tol_far = tol * self.lm.L / self.lm.a_ref
+            bottom = np.abs(z + self.lm.D) < tol_far
+            outer = outer & ~(bottom & (comp == 0) & (np.abs(r - self.lm.L) > tol_far))
         outer_dofs = np.nonzero(outer)[0]
         if self.lm.rigid_base or self.farfield_material is None:
             vals_outer = np.zeros(len(outer_dofs))
@@ -97,10 +122,6 @@ class FEModel:
         return dofs, vals[idx]
 
     # -- assembly ------------------------------------------------------------------------
-    def _field(self, region: Region, values: float) -> np.ndarray:
-        nq = self.basis.X.shape[-1]
-        return np.full((len(region.elements), nq), values)
-
     def stiffness(self) -> sp.csr_matrix:
         """System matrix of the linear-elastic model (displacement + mixed-region pressures)."""
         if self._K is not None:
@@ -111,6 +132,7 @@ class FEModel:
         lam = np.zeros((nel, nq))
         mu = np.zeros((nel, nq))
         blocks = []
+        p_locs = []
         for reg in self.regions:
             if not isinstance(reg.law, LinearElastic):
                 raise TypeError("stiffness() is the linear-elastic fast path; use loading.tangent")
@@ -126,14 +148,37 @@ class FEModel:
                 pd = np.unique(pb.element_dofs)
                 # unknown p_hat = p / mu: balances the saddle-point blocks for the factorisation
                 blocks.append((pd, mu_r * Bm.tocsc()[:, pd], mu_r**2 * C.tocsr()[pd][:, pd], mu_r))
-        K = asm(forms.elasticity, self.basis, lam=lam, mu=mu)
+                p_locs.append(pb.doflocs[:, pd])
+        if self.legacy_assembly:
+            K = asm(forms.elasticity, self.basis, lam=lam, mu=mu)
+        else:
+            K = forms.assemble_elasticity(self.basis, lam, mu)  # == asm(forms.elasticity, ...), faster
         self._p_blocks = blocks
+        self._p_locs = p_locs
         if blocks:
             cols = sp.hstack([b[1] for b in blocks])
             C = sp.block_diag([b[2] for b in blocks])
             K = sp.bmat([[K, cols], [cols.T, C]])
+        if self.tie.shape[1]:
+            # multipliers t_k (the interface's normal force, scaled) with u_z(coating) = u_z(substrate)
+            n, m = K.shape[0], self.tie.shape[1]
+            scale = float(np.median(K.diagonal()[self.tie[0]]))
+            k = np.arange(m)
+            T = sp.csr_matrix((np.r_[np.full(m, scale), np.full(m, -scale)], (np.r_[k, k], self.tie.ravel())),
+                              shape=(m, n))
+            K = sp.bmat([[K, T.T], [T, None]])
         self._K = sp.csr_matrix(K)
         return self._K
+
+    def dof_locations(self) -> np.ndarray:
+        """``(r, z)`` of every unknown of :meth:`stiffness` (``[2, n_dofs]``; call it after assembly)."""
+        return np.hstack([self.basis.doflocs, *self._p_locs, self.basis.doflocs[:, self.tie[0]]])
+
+    def dof_grid(self) -> tuple[np.ndarray, np.ndarray]:
+        """Indices ``(i, j)`` of every unknown's node in the tensor grid of Q2 nodes (the
+        geometry the condensed solve orders by, :mod:`coathertz.fem.ordering`)."""
+        loc = self.dof_locations()
+        return grid_indices(loc[0]), grid_indices(loc[1])
 
     def near_null_space(self, free: np.ndarray) -> np.ndarray:
         """Near-null space for smoothed aggregation on the ``free`` dofs: ``u_z = 1``, ``u_r = 1``."""

@@ -26,6 +26,74 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from coathertz.errors import ConvergenceError
+from coathertz.fem.ordering import nested_dissection
+
+
+def _delay_zero_pivots(A: sp.csr_matrix, order: np.ndarray, is_last: np.ndarray) -> np.ndarray:
+    """Move every unknown with a zero diagonal (an incompressible region's pressure) just after the
+    first of its neighbours in ``order``, so that its pivot has received fill and is not zero."""
+    n = A.shape[0]
+    where = np.full(n, np.inf)
+    where[order] = np.arange(len(order))
+    key = where.copy()
+    diag = A.diagonal()
+    for i in np.nonzero((diag == 0) & ~is_last)[0]:
+        nb = A.indices[A.indptr[i] : A.indptr[i + 1]]
+        nb = nb[(nb != i) & ~is_last[nb]]
+        first = where[nb].min() if len(nb) else np.inf
+        if np.isfinite(first) and first > where[i]:
+            key[i] = first + 0.5
+    return order[np.argsort(key[order], kind="stable")]
+
+
+@dataclass
+class CondensedFactor:
+    """One LU of ``A`` whose trailing block is the Schur complement on the unknowns ``last``.
+
+    ``A`` is ordered by geometric nested dissection with ``last`` at the end
+    (:mod:`coathertz.fem.ordering`) and factorised without column reordering (SuperLU,
+    ``permc_spec='NATURAL'``) and with diagonal pivots (``diag_pivot_thresh=0``), so that
+    ``P A P^T = L U`` with ``P`` our permutation; then the trailing blocks give
+    ``S = A_CC - A_CI A_II^{-1} A_IC = L_CC U_CC`` (the stiffness condensed on the contact
+    candidates ``C``). The mixed u-p system works too: in this order every pressure unknown is
+    eliminated after the displacements of its own node, so its pivot is not zero. If SuperLU
+    pivots off the diagonal anyway (``perm_r`` not the identity), :class:`ValueError` is raised
+    and the caller falls back to refactorising.
+
+    Attributes
+    ----------
+    S
+        Dense Schur complement on ``last`` (in the order given).
+    solve
+        ``b -> A^{-1} b`` in the original numbering.
+    """
+
+    S: np.ndarray
+    solve: Callable[[np.ndarray], np.ndarray]
+
+    @classmethod
+    def build(cls, A: sp.spmatrix, grid: tuple[np.ndarray, np.ndarray], last: np.ndarray, stats: dict):
+        n = A.shape[0]
+        is_last = np.zeros(n, dtype=bool)
+        is_last[last] = True
+        A = sp.csr_matrix(A)
+        nd = nested_dissection(grid[0], grid[1], is_last)[: n - len(last)]
+        perm = np.concatenate([_delay_zero_pivots(A, nd, is_last), last])
+        Ap = sp.csc_matrix(A[perm][:, perm])
+        lu = spla.splu(Ap, permc_spec="NATURAL", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
+        stats["factorisations"] += 1
+        if not (np.array_equal(lu.perm_r, np.arange(n)) and np.array_equal(lu.perm_c, np.arange(n))):
+            raise ValueError("SuperLU reordered the condensed factorisation")
+        m = n - len(last)
+        S = lu.L[m:, m:] @ lu.U[m:, m:]
+        inv = np.empty(n, dtype=np.int64)
+        inv[perm] = np.arange(n)
+
+        def solve(b: np.ndarray) -> np.ndarray:
+            stats["solves"] += 1
+            return lu.solve(b[perm])[inv]
+
+        return cls(np.asarray(S.todense()), solve)
 
 
 @dataclass
@@ -41,6 +109,12 @@ class DirectSolver:
     symmetric_mode: bool = True
     name: str = "direct"
     stats: dict = field(default_factory=lambda: {"factorisations": 0, "solves": 0})
+
+    def condensed(
+        self, A: sp.spmatrix, grid: tuple[np.ndarray, np.ndarray], last: np.ndarray
+    ) -> CondensedFactor:
+        """Factorise ``A`` once with the Schur complement on ``last`` (:class:`CondensedFactor`)."""
+        return CondensedFactor.build(A, grid, last, self.stats)
 
     def prepare(self, A: sp.spmatrix, B: np.ndarray | None = None) -> Callable[[np.ndarray], np.ndarray]:
         if self.symmetric_mode:

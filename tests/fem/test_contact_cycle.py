@@ -30,7 +30,7 @@ def _alternating(edge_lam):
         lam[-1] = edge_lam if active[-1] else 0.0
         u = np.zeros(n)
         u[-1] = 0.0 if active[-1] else edge_lam  # gap = g0 - delta - u
-        return u, 1.0, lam
+        return u, u[prob.cand], 1.0, lam
 
     def update(active, lam, gap):
         # an exact update that misreads the edge node both ways (what round-off does)

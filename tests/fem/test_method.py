@@ -10,7 +10,7 @@ import pytest
 from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError
 from coathertz.fem.method import FEMMethod
-from coathertz.materials import Body, Material
+from coathertz.materials import Body, Coating, Material
 from coathertz.methods import Method, get_method
 
 
@@ -22,7 +22,10 @@ def test_protocol_and_registry(fx):
     ell = ContactCase(Body.rigid_sphere(0.01), Body(fx.STEEL, None, 0.02, 0.005), 10.0)
     assert not m.supports(ell)
     two = ContactCase(Body.sphere(fx.STEEL, 0.01), Body.half_space(Material(100e9, 0.3)), 10.0)
-    assert not m.supports(two)
+    assert m.supports(two)  # an elastic indenter: both bodies meshed (test_two_body.py)
+    coated_pair = ContactCase(Body.sphere(fx.STEEL, 0.01, Coating(Material(300e9, 0.3), 1e-5)),
+                              Body.half_space(Material(100e9, 0.3), Coating(Material(50e9, 0.3), 1e-5)), 10.0)
+    assert not m.supports(coated_pair)
     with pytest.raises(CoatHertzError, match="circular"):
         m.solve(ell)
 
@@ -97,3 +100,16 @@ def test_refinement_zone_is_replaced_around_computed_radius(fx):
     assert r.meta["remeshes"] >= 1
     assert r.meta["elements_across_a"] >= 0.85 * 20
     assert r.a < 0.8 * case.a0c
+
+
+def test_large_contact_warns_and_records_validity(fx):
+    """a/R > 0.1: the half-space and small-strain assumptions fail (team convention)."""
+    import warnings
+
+    case = fx.hertz_case(W=2e5)  # a ~ 0.19 R
+    with warnings.catch_warnings(record=True) as rec:
+        warnings.simplefilter("always")
+        r = FEMMethod(mesh="coarse").solve(case)
+    assert r.a / case.R > 0.1
+    assert "a/R" in r.meta["validity"] and any("a/R" in str(w.message) for w in rec)
+    assert "validity" not in fx.solve(fx.hertz_case(), mesh="coarse").meta
