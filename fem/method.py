@@ -39,7 +39,7 @@ from coathertz.fem.loading import LoadPath, solve_incremental
 from coathertz.fem.material import LinearElastic
 from coathertz.fem.mesh import MESH_LEVELS, MeshSize, build_companion, build_mesh, edge_band, mesh_size
 from coathertz.fem.model import FEModel, Region
-from coathertz.fem.post import contact_radius, peak_pressure, stress_report, surface_pressure
+from coathertz.fem.post import AXIS_TOL, contact_radius, peak_pressure, stress_report, surface_pressure
 from coathertz.fem.solvers import AMGSolver, DirectSolver
 from coathertz.hertz import hertz_circular
 from coathertz.materials import Body, Material
@@ -69,8 +69,9 @@ def axisymmetric_equivalent(case: ContactCase) -> Equivalent | None:
         return Equivalent(b2, case.R, 1.0)
     if b2.is_rigid and not b1.is_rigid:
         return Equivalent(b1, case.R, 1.0)
-    if b1.material == b2.material and b1.coating == b2.coating and not b1.is_rigid:
-        return Equivalent(b1, 2.0 * case.R, 2.0)
+    pair = case.identical_pair_equivalent()  # the one two-identical-bodies equivalence
+    if pair is not None:
+        return Equivalent(pair.body2, pair.R, case.IDENTICAL_PAIR_DELTA_FACTOR)
     for ind, other in ((b1, b2), (b2, b1)):
         if not ind.is_coated and not ind.material.is_rigid and not other.is_rigid:
             return Equivalent(other, case.R, 1.0, indenter=ind.material)
@@ -371,7 +372,7 @@ class FEMMethod:
                 f"contact radius {a:.4g} m stayed outside the refined zone after max_remesh={self.max_remesh}"
             )
         p_axis = peak_pressure(r_c, p, a)
-        p[r_c == 0.0] = p_axis
+        p[r_c <= AXIS_TOL * a] = p_axis
         p0 = max(p_axis, float(p.max()))  # maximum contact pressure (on the axis in all cases seen)
         wall = time.perf_counter() - t0
         meta = {
@@ -398,7 +399,7 @@ class FEMMethod:
             "a_num": radii["a_num"],
             "active_nodes": int(sol.active.sum()),
             "p_axis": p_axis,
-            "r_p_max": float(r_c[int(np.argmax(p))]),
+            "r_p_max": float(r_c[int(np.argmax(p))]) if p.max() > p_axis else 0.0,
         }
         fields = {"r": r_c, "p": p, "gap": sol.gap, "active": sol.active}
         if a / eq.R > A_OVER_R_MAX:
