@@ -93,7 +93,7 @@ def _printed(out: str) -> tuple[str, str, str]:
 def test_readme_three_methods_table_is_what_the_commands_print(capsys):
     """Issue 12 item 10: the quoted numbers are exactly what the shown commands print."""
     rows = _three_methods()
-    assert [r[1].split()[1] for r in rows] == ["predict", "fft", "fem"]
+    assert [r[1].split()[1] for r in rows] == ["predict", "fft", "fem", "axisym"]
     for method, command, *quoted in rows:
         assert main(shlex.split(command)[1:]) == 0
         printed = _printed(capsys.readouterr().out)
