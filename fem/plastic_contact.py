@@ -77,9 +77,11 @@ class ContactGeometry:
     fixed: np.ndarray
     vals0: np.ndarray  # essential values at W = 0
     vals_unit: np.ndarray  # d(values)/dW (far field of a unit load)
+    a_hint: Callable[[float], float] | None = None  # contact radius guess for a load (first contact)
 
 
-def geometry_of(model, g0_fun: Callable[[np.ndarray], np.ndarray]) -> ContactGeometry:
+def geometry_of(model, g0_fun: Callable[[np.ndarray], np.ndarray],
+                a_hint: Callable[[float], float] | None = None) -> ContactGeometry:
     """Contact candidates and essential conditions of a :class:`coathertz.fem.model.FEModel`."""
     cand = model.candidates
     r = model.r_dof[cand]
@@ -87,7 +89,7 @@ def geometry_of(model, g0_fun: Callable[[np.ndarray], np.ndarray]) -> ContactGeo
     fixed0, v0 = model.dirichlet(0.0)
     if not np.array_equal(fixed, fixed0):
         raise CoatHertzError("essential dofs must not depend on the load")
-    return ContactGeometry(cand, r, g0_fun(r), fixed, v0, v1 - v0)
+    return ContactGeometry(cand, r, g0_fun(r), fixed, v0, v1 - v0, a_hint)
 
 
 @dataclass
@@ -207,7 +209,8 @@ class IncrementalContact:
         no_contact = self.control == "load" and target == 0.0
         active = np.zeros_like(state.active) if no_contact else state.active.copy()
         if not no_contact and not active.any() and self.control == "load":
-            active = g.r <= g.r[1]
+            a0 = g.a_hint(target) if g.a_hint is not None else 0.0
+            active = g.r <= max(a0, g.r[1])
         if self.control == "approach" and not active.any():
             active = (g.g0 - target - state.u[g.cand]) < 0
         u = state.u.copy()
@@ -235,7 +238,7 @@ class IncrementalContact:
             bal = (W - lam_eq.sum()) if self.control == "load" else 0.0
             res = math.hypot(float(np.linalg.norm(R)), bal) / self.scale
             residuals.append(res)
-            if not np.isfinite(res) or (it > 3 and res > 1e2):  # out-of-balance >> the load: diverging
+            if not np.isfinite(res) or (it > 8 and res > 1e2):  # out-of-balance >> the load: diverging
                 return None
             if np.array_equal(new_active, active) and res <= s.rtol:
                 lam_out = np.zeros(len(g.cand))

@@ -205,7 +205,12 @@ def solve_plastic(
     model = FEModel(lm, regions, ff_mat, BoussinesqFarField())
     asm = BBarAssembler(model.basis, [(reg.elements, reg.law) for reg in regions], bbar=bbar)
     R = eq.R
-    geom = geometry_of(model, lambda r: r**2 / (2.0 * R))
+    E_top = mats[0].E_star
+
+    def a_hint(W_: float) -> float:  # Hertz radius (Johnson eq 4.22) of the top material
+        return float(hertz_circular(W_, R, E_top).a0) if W_ > 0 else 0.0
+
+    geom = geometry_of(model, lambda r: r**2 / (2.0 * R), a_hint)
     solver = IncrementalContact(asm, geom, "load", W, NewtonSettings(rtol=rtol))
     targets = load_path(W, n_steps, unload or reload, reload)
     weights = model.weights_all[geom.cand]
@@ -246,20 +251,30 @@ def solve_plastic(
     phases = ["loading"] * n_steps + ["unloading"] * (n_steps if (unload or reload) else 0) + \
         ["reloading"] * (n_steps if reload else 0)
 
+    saved: dict[str, PathState] = {}
+
     def on_increment(inc, state: PathState, k: int) -> None:
         record(inc, state, phases[k])
+        if phases[k] == "unloading" and inc.W == 0.0:
+            saved["residual"] = state
+        if phases[k] == "loading" and k == n_steps - 1:
+            saved["loaded"] = state
         if progress is not None:
             progress(inc, phases[k])
 
     path = solver.run(targets, progress=on_increment)
     state = path.state
-    mesh_d = {"n_a": spec.n_a, "r_fine": spec.r_fine, "t_fine": spec.t_fine, "growth": spec.growth, "L": spec.L}
-    meta: dict = {"elements": lm.n_elements, "dofs": int(model.n_u), "mesh": mesh_d, "a_ref": a_ref, "bbar": bbar, "n_steps": n_steps, "unload": bool(unload),
-            "reload": bool(reload), "increments": len(path.increments), "factorisations": path.factorisations,
-            "wall_time": path.wall_time, "R_model": R, "delta_factor": eq.delta_factor,
-            "newton_iterations_total": int(sum(curves["newton_iterations"])),
-            "yield": {("coating" if (h > 0 and k == 0) else "substrate"): m.plasticity.key()
-                      for k, m in enumerate(mats) if m.plasticity is not None}}
+    mesh_d = {"n_a": spec.n_a, "r_fine": spec.r_fine, "t_fine": spec.t_fine, "growth": spec.growth,
+              "L": spec.L}
+    meta: dict = {
+        "elements": lm.n_elements, "dofs": int(model.n_u), "mesh": mesh_d, "a_ref": a_ref, "bbar": bbar,
+        "n_steps": n_steps, "unload": bool(unload), "reload": bool(reload),
+        "increments": len(path.increments), "factorisations": path.factorisations,
+        "wall_time": path.wall_time, "R_model": R, "delta_factor": eq.delta_factor,
+        "newton_iterations_total": int(sum(curves["newton_iterations"])),
+        "yield": {("coating" if (h > 0 and k == 0) else "substrate"): m.plasticity.key()
+                  for k, m in enumerate(mats) if m.plasticity is not None},
+    }
     a_max = np.nanmax(np.array(curves["a"], dtype=float)) if curves["a"] else math.nan
     if a_max / R > 0.1:
         msg = (f"a/R = {a_max / R:.3g} > 0.1: the small-strain, half-space model is outside its "
@@ -268,14 +283,16 @@ def solve_plastic(
         meta["validity"] = msg
     if locate_first_yield:
         meta["first_yield"] = _first_yield_load(solver, asm, targets, curves)
-    # final fields: residual (or loaded) state
-    _, _, sig_final, _ = asm.evaluate(state.u, state.states, tangent=False)
-    sig = dict(enumerate(sig_final))
-    a_last = curves["a"][-1] if math.isfinite(curves["a"][-1]) else a_max
-    sfields, smeta = stress_report(model, state.u, a_max if (unload or reload) else a_last, sig)
-    final = {"u_z_surface": {"r": r_top, "u_z": state.u[top]},
-             "residual_depth": curves["residual_depth"][-1], "stresses": sfields, "stress_extrema": smeta,
-             "plastic_zone": _plastic_zone(asm, state.states)}
+    # final fields: stresses at the largest load and, after unloading, the residual state
+    final: dict = {"plastic_zone": _plastic_zone(asm, state.states)}
+    for name, st in (("loaded", saved.get("loaded")), ("residual", saved.get("residual"))):
+        if st is None:
+            continue
+        _, _, sig_q, _ = asm.evaluate(st.u, st.states, tangent=False)
+        sfields, smeta = stress_report(model, st.u, a_max, dict(enumerate(sig_q)))
+        final[name] = {"u_z_surface": {"r": r_top, "u_z": st.u[top]}, "depth": float(-st.u[top][0]),
+                       "stresses": sfields, "stress_extrema": smeta}
+    final["residual_depth"] = final["residual"]["depth"] if "residual" in final else None
     meta["plastic_zone"] = final["plastic_zone"]
     return PlasticResult(curves, profiles, final, meta, model, asm, state, snapshots)
 
