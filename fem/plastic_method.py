@@ -151,6 +151,7 @@ def solve_plastic(
     locate_first_yield: bool = False,
     progress: Callable | None = None,
     a_ref: float | None = None,
+    newton: NewtonSettings | None = None,
 ) -> PlasticResult:
     """Follow the load path of ``case`` (load ``W``) with the elastic-plastic FE model.
 
@@ -173,6 +174,8 @@ def solve_plastic(
         Called with each converged increment.
     a_ref
         Reference contact radius of the mesh [m]; default: estimated from Hertz and the yield stress.
+    newton
+        Tolerances and caps of the increment loop (default :class:`NewtonSettings` with ``rtol``).
     """
     eq = axisymmetric_equivalent(case)
     if eq is None:
@@ -211,7 +214,7 @@ def solve_plastic(
         return float(hertz_circular(W_, R, E_top).a0) if W_ > 0 else 0.0
 
     geom = geometry_of(model, lambda r: r**2 / (2.0 * R), a_hint)
-    solver = IncrementalContact(asm, geom, "load", W, NewtonSettings(rtol=rtol))
+    solver = IncrementalContact(asm, geom, "load", W, newton or NewtonSettings(rtol=rtol))
     targets = load_path(W, n_steps, unload or reload, reload)
     weights = model.weights_all[geom.cand]
     top = model.top
@@ -272,6 +275,7 @@ def solve_plastic(
         "increments": len(path.increments), "factorisations": path.factorisations,
         "wall_time": path.wall_time, "R_model": R, "delta_factor": eq.delta_factor,
         "newton_iterations_total": int(sum(curves["newton_iterations"])),
+        "residual_histories": [list(inc.residuals) for inc in path.increments],
         "yield": {("coating" if (h > 0 and k == 0) else "substrate"): m.plasticity.key()
                   for k, m in enumerate(mats) if m.plasticity is not None},
     }

@@ -139,7 +139,7 @@ class HollowSphere:
     def _levels(self, rho: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Means of ``v`` over the quadrature points that share a radius (to 1e-3 element sizes)."""
         key = np.round(rho / (1e-3 * (self.b - self.a) / self.n_rho)).astype(np.int64)
-        levels, inv = np.unique(key, return_inverse=True)
+        _, inv = np.unique(key, return_inverse=True)
         cnt = np.bincount(inv)
         return np.bincount(inv, rho) / cnt, np.bincount(inv, v) / cnt
 
