@@ -152,6 +152,7 @@ def solve_plastic(
     progress: Callable | None = None,
     a_ref: float | None = None,
     newton: NewtonSettings | None = None,
+    targets: list[float] | None = None,
 ) -> PlasticResult:
     """Follow the load path of ``case`` (load ``W``) with the elastic-plastic FE model.
 
@@ -176,6 +177,9 @@ def solve_plastic(
         Reference contact radius of the mesh [m]; default: estimated from Hertz and the yield stress.
     newton
         Tolerances and caps of the increment loop (default :class:`NewtonSettings` with ``rtol``).
+    targets
+        Explicit loading targets [N] (increasing, ending at ``case.W``) instead of ``n_steps``
+        equal ones, e.g. geometric steps for deep indentation; unloading mirrors them.
     """
     eq = axisymmetric_equivalent(case)
     if eq is None:
@@ -215,7 +219,15 @@ def solve_plastic(
 
     geom = geometry_of(model, lambda r: r**2 / (2.0 * R), a_hint)
     solver = IncrementalContact(asm, geom, "load", W, newton or NewtonSettings(rtol=rtol))
-    targets = load_path(W, n_steps, unload or reload, reload)
+    if targets is None:
+        targets = load_path(W, n_steps, unload or reload, reload)
+    else:
+        up = [float(t) for t in targets]
+        if not (up and all(b > a for a, b in zip([0.0, *up], up, strict=False)) and math.isclose(up[-1], W)):
+            raise CoatHertzError("targets must increase from > 0 to the case load W")
+        n_steps = len(up)
+        down = [*up[-2::-1], 0.0]
+        targets = up + (down if (unload or reload) else []) + (up if reload else [])
     weights = model.weights_all[geom.cand]
     top = model.top
     r_top = model.r_dof[top]

@@ -4,8 +4,9 @@ No plasticity is computed: the elastic FE solution (:class:`coathertz.fem.method
 load ``W`` gives the largest ratio :math:`\rho(W) = \max \sigma_{vM} / Y` over the coating
 (yield stress ``Yc``) and the substrate (``Ys``), and where it occurs. For a homogeneous body the
 stress field scales with :math:`p_0 \propto W^{1/3}` (Hertz, Johnson 1985 eq 4.23), so
-:math:`W_y = W / \rho^3`; a coating breaks the self-similarity, so the update
-:math:`W \leftarrow W / \rho^3` is iterated until :math:`|\rho - 1| <` ``tol`` (2-4 elastic solves).
+:math:`W_y = W / \rho^3`; a coating breaks the self-similarity, so ``log rho`` is driven to zero
+by secant steps in ``log W`` (the first with the Hertz slope 1/3) until :math:`|\rho - 1| <`
+``tol`` (2-4 elastic solves).
 
 The maximum is located in two stages: the largest quadrature-point value, then a 21 x 21 probe
 grid (two element sizes wide) of the per-region :math:`L^2`-projected stress field
@@ -137,6 +138,7 @@ def yield_onset(case: ContactCase, method: FEMMethod | None = None, Yc: float | 
     Yc_, Ys_ = _yield_stresses(case, Yc, Ys)
     method = method or FEMMethod()
     W = case.W
+    prev: tuple[float, float] | None = None  # (log W, log rho) of the previous solve
     for it in range(1, max_solves + 1):
         c = replace(case, W=W)
         res, model, path = method.solve_full(c)
@@ -166,5 +168,10 @@ def yield_onset(case: ContactCase, method: FEMMethod | None = None, Yc: float | 
             if lm.h > 0 and abs(z_m + lm.h) <= 0.05 * max(lm.h, s) + 1e-12:
                 where = "interface"
             return YieldOnset(W, res.p0, res.a, where, names[k], r_m, z_m, Y, it, rho)
-        W = W / rho**3
+        slope = 1.0 / 3.0
+        if prev is not None and abs(math.log(W) - prev[0]) > 1e-12:
+            s_ = (math.log(rho) - prev[1]) / (math.log(W) - prev[0])
+            slope = s_ if 0.05 < s_ < 2.0 else slope
+        prev = (math.log(W), math.log(rho))
+        W = W * math.exp(-math.log(rho) / slope)
     raise ConvergenceError(f"yield onset: max sigma_vM / Y = {rho:.4f} after max_solves={max_solves} solves")

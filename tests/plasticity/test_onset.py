@@ -14,7 +14,8 @@ Y = 1e9
 
 
 def _case(W=10.0, nu=0.3):
-    return ContactCase(Body.rigid_sphere(0.01), Body.half_space(Material(200e9, nu, plasticity=Plasticity(Y))), W)
+    mat = Material(200e9, nu, plasticity=Plasticity(Y))
+    return ContactCase(Body.rigid_sphere(0.01), Body.half_space(mat), W)
 
 
 def test_closed_form_hertz_onset():

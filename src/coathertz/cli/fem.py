@@ -18,6 +18,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="linear solver (default: direct)")
     parser.add_argument("--vtu", metavar="OUT.vtu", help="write mesh, displacement and stresses")
     parser.add_argument("--json", action="store_true", help="machine-readable output")
+    g = parser.add_argument_group("elastic-plastic (J2) load path; yield data from the case's materials")
+    g.add_argument("--plastic", action="store_true", help="incremental elastic-plastic solution")
+    g.add_argument("--unload", action="store_true", help="unload to zero after loading (residual state)")
+    g.add_argument("--reload", action="store_true", help="reload to W after unloading")
+    g.add_argument("--steps", type=int, default=10, help="load increments to W (default 10)")
+    g.add_argument("--vtu-dir", metavar="DIR", help="--plastic: one VTU per increment (plastic strain)")
+    g.add_argument("--out-json", metavar="OUT.json", help="--plastic: write the curves and profiles")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -26,6 +33,10 @@ def run(args: argparse.Namespace) -> int:
     from coathertz.fem.method import FEMMethod
 
     case = load_case(args.case)
+    if args.plastic:
+        from coathertz.fem.plastic_cli import run_plastic
+
+        return run_plastic(case, args)
     method = FEMMethod(mesh=args.mesh, contact=args.contact, solver=args.solver, stresses=True)
     res, model, path = method.solve_full(case)
     if args.vtu:

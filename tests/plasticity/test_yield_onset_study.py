@@ -1,0 +1,21 @@
+"""The yield_onset study at tiny resolution: protocol, homogeneous claims, figure."""
+
+from __future__ import annotations
+
+from coathertz.verification import _common as C
+from coathertz.verification import get_study
+
+
+def test_yield_onset_study_tiny(tmp_path):
+    S = get_study("yield_onset")
+    assert len(S.cases("tiny")) == 2 and all(not sc.methods for sc in S.cases("quick"))
+    r = C.StudyResult(S.NAME, S.TITLE, S.CLAIM, "tiny")
+    S.analyse(r)
+    assert not r.failures
+    claims = {c.id: c for c in r.claims}
+    assert claims["yield-onset-homogeneous-p0"].holds and claims["yield-onset-homogeneous-z"].holds
+    hom = next(x for x in r.extra["onset"] if x["case"] == "homogeneous")
+    assert abs(hom["W_bar"] - 1.0) < 5e-3  # the FE onset of the substrate alone is W_ys (Hertz)
+    coated = next(x for x in r.extra["onset"] if x["case"] != "homogeneous")
+    assert coated["where"] in ("coating", "interface") and coated["W_bar"] < 0.2  # stiff coating, same Y
+    assert all(p.exists() for p in S.plot(r, tmp_path))
