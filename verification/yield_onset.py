@@ -123,7 +123,8 @@ def analyse(result: C.StudyResult) -> None:
         h = hom[0]
         result.claims.append(C.Claim(
             "yield-onset-homogeneous-p0", "homogeneous half-space: p0/Y at first yield vs Johnson's 1.60",
-            100 * abs(h["p0_over_Y"] / 1.60 - 1), "< 1 %", bool(abs(h["p0_over_Y"] / 1.60 - 1) < 0.01), "%", 0.05,
+            100 * abs(h["p0_over_Y"] / 1.60 - 1), "< 1 %", bool(abs(h["p0_over_Y"] / 1.60 - 1) < 0.01),
+            "%", 0.05,
             f"FE p0/Y = {h['p0_over_Y']:.4f} (Hertz axis stresses: {p0_cf:.4f}), "
             f"{fem_settings(result.resolution)['n_a']} elements across a"))
         result.claims.append(C.Claim(
@@ -136,9 +137,10 @@ def analyse(result: C.StudyResult) -> None:
         counts = {c: sum(r["where"] == c for r in coated) for c in CLASSES}
         worst = min(coated, key=lambda r: r["W_bar"])
         result.claims.append(C.Claim(
-            "yield-onset-map", "coated cases: smallest W_y/W_ys (observation)", worst["W_bar"], "(observation)",
-            None, "", 0.05, f"at {worst['case']} ({worst['where']}); first yield in coating / interface / "
-            f"substrate: {counts['coating']} / {counts['interface']} / {counts['substrate']} of {len(coated)}"))
+            "yield-onset-map", "coated cases: smallest W_y/W_ys (observation)", worst["W_bar"],
+            "(observation)", None, "", 0.05,
+            f"at {worst['case']} ({worst['where']}); first yield in coating / interface / substrate: "
+            f"{counts['coating']} / {counts['interface']} / {counts['substrate']} of {len(coated)}"))
 
 
 def plot(result: C.StudyResult, outdir) -> list:
