@@ -13,7 +13,7 @@ def test_yield_onset_study_protocol():
     assert len(S.cases("tiny")) == 2 and len(S.cases("quick")) == 5 and len(S.cases("full")) == 91
     assert all(not sc.methods for sc in S.cases("quick"))  # the study runs its own onset solves
     W_ys, a_ys = S.substrate_reference()
-    assert 40 < W_ys < 50 and 80e-6 < a_ys < 100e-6  # p0 = 1.61 GPa on steel, R = 10 mm
+    assert 40 < W_ys < 50 and 100e-6 < a_ys < 130e-6  # p0 = 1.61 GPa on steel, R = 10 mm
 
 
 @pytest.mark.slow
