@@ -242,8 +242,12 @@ def solve_plastic(
         p = surface_pressure(inc.lam, weights)
         a = math.nan
         if inc.active.any() and inc.W > 0:
+            # the sub-element gap fit (post.contact_radius) where it is plausible; otherwise the
+            # active nodes' tributary disc a_num (plastic contacts: flat pressure, pile-up, so the
+            # p^2 fit of the elastic model does not apply)
             try:
-                a = contact_radius(geom.r, p, inc.gap, inc.active)["a"]
+                radii = contact_radius(geom.r, p, inc.gap, inc.active)
+                a = radii["a_gap"] if math.isfinite(radii["a_gap"]) else radii["a_num"]
             except Exception:  # contact at the end of the candidate zone: last active node
                 a = float(geom.r[inc.active].max())
         z = _plastic_zone(asm, state.states)
