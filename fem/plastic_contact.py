@@ -41,6 +41,11 @@ from coathertz.fem.plastic_assembly import BBarAssembler
 #: Complementarity violations below this (relative to the largest multiplier / the approach) are
 #: round-off: such an edge node does not change the active set (cf. ``contact.CYCLE_TOL``).
 ROUND_OFF = 1e-7
+#: An edge node may flip in and out of the active set forever (a cycle), most often at large
+#: plastic indentation. A converged state (residual below ``rtol``) whose active set belongs to a
+#: cycle is accepted if its complementarity violation (relative, as above) is below this; the
+#: increment records ``cycle = True``.
+CYCLE_ACCEPT = 2e-3
 
 
 @dataclass
@@ -56,6 +61,7 @@ class Increment:
     active: np.ndarray
     lam: np.ndarray
     gap: np.ndarray
+    cycle: bool = False
 
 
 @dataclass
@@ -216,6 +222,7 @@ class IncrementalContact:
         u = state.u.copy()
         F, K, _, _ = self.asm.evaluate(u, state.states)
         residuals = []
+        seen: set[bytes] = set()
         for it in range(1, s.max_newton + 1):
             rhs = K @ u - F
             u_new, delta, W, lam = self._linear_step(K, rhs, active, target)
@@ -240,12 +247,21 @@ class IncrementalContact:
             residuals.append(res)
             if not np.isfinite(res) or (it > 8 and res > 1e2):  # out-of-balance >> the load: diverging
                 return None
-            if np.array_equal(new_active, active) and res <= s.rtol:
+            same = np.array_equal(new_active, active)
+            cycle = False
+            if not same and res <= s.rtol and new_active.tobytes() in seen:
+                lam_scale = max(float(np.abs(lam_eq).max()) if lam_eq.size else 0.0, 1e-300)
+                v_lam = max(0.0, -float(lam_eq.min())) / lam_scale if lam_eq.size else 0.0
+                gin = gap[~active]
+                v_gap = max(0.0, -float(gin.min())) / max(abs(delta), 1e-300) if gin.size else 0.0
+                cycle = max(v_lam, v_gap) < CYCLE_ACCEPT
+            if (same or cycle) and res <= s.rtol:
                 lam_out = np.zeros(len(g.cand))
                 lam_out[active] = lam_eq
                 W_out = float(lam_eq.sum()) if self.control == "approach" else W
-                inc = Increment(target, W_out, delta, it, residuals, 0, active.copy(), lam_out, gap)
+                inc = Increment(target, W_out, delta, it, residuals, 0, active.copy(), lam_out, gap, cycle)
                 return PathState(u, trial, active.copy()), inc
+            seen.add(active.tobytes())
             active = new_active
         return None
 

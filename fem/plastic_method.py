@@ -234,7 +234,7 @@ def solve_plastic(
 
     curves: dict[str, list] = {k: [] for k in (
         "W", "delta", "a", "p_max", "p_mean", "newton_iterations", "cutbacks", "ep_max", "zone_r",
-        "zone_depth", "phase", "residual_depth")}
+        "zone_depth", "phase", "residual_depth", "cycle")}
     profiles: list[dict] = []
     snapshots: list = []
 
@@ -262,6 +262,7 @@ def solve_plastic(
         curves["zone_r"].append(z["zone_r"])
         curves["zone_depth"].append(z["zone_depth"])
         curves["phase"].append(phase)
+        curves["cycle"].append(bool(inc.cycle))
         curves["residual_depth"].append(float(-state.u[top][0]))
         profiles.append({"r": geom.r, "p": p, "u_z": state.u[geom.cand]})
         if keep_snapshots:
