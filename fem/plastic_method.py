@@ -153,6 +153,7 @@ def solve_plastic(
     a_ref: float | None = None,
     newton: NewtonSettings | None = None,
     targets: list[float] | None = None,
+    delta_max: float | None = None,
 ) -> PlasticResult:
     """Follow the load path of ``case`` (load ``W``) with the elastic-plastic FE model.
 
@@ -180,6 +181,10 @@ def solve_plastic(
     targets
         Explicit loading targets [N] (increasing, ending at ``case.W``) instead of ``n_steps``
         equal ones, e.g. geometric steps for deep indentation; unloading mirrors them.
+    delta_max
+        Approach control: ``n_steps`` equal approach increments to ``delta_max`` [m] (and back to
+        zero with ``unload``); the load comes out. ``case.W`` then only sizes the mesh and scales
+        the residual tolerance.
     """
     eq = axisymmetric_equivalent(case)
     if eq is None:
@@ -218,8 +223,13 @@ def solve_plastic(
         return float(hertz_circular(W_, R, E_top).a0) if W_ > 0 else 0.0
 
     geom = geometry_of(model, lambda r: r**2 / (2.0 * R), a_hint)
-    solver = IncrementalContact(asm, geom, "load", W, newton or NewtonSettings(rtol=rtol))
-    if targets is None:
+    control = "load" if delta_max is None else "approach"
+    solver = IncrementalContact(asm, geom, control, W, newton or NewtonSettings(rtol=rtol))
+    if control == "approach":
+        if not (isinstance(delta_max, int | float) and 0 < delta_max < math.inf) or targets is not None:
+            raise CoatHertzError(f"delta_max must be a length > 0 [m] (without targets), got {delta_max!r}")
+        targets = load_path(delta_max / eq.delta_factor, n_steps, unload or reload, reload)
+    elif targets is None:
         targets = load_path(W, n_steps, unload or reload, reload)
     else:
         up = [float(t) for t in targets]
@@ -288,7 +298,7 @@ def solve_plastic(
               "L": spec.L}
     meta: dict = {
         "elements": lm.n_elements, "dofs": int(model.n_u), "mesh": mesh_d, "a_ref": a_ref, "bbar": bbar,
-        "n_steps": n_steps, "unload": bool(unload), "reload": bool(reload),
+        "n_steps": n_steps, "unload": bool(unload), "reload": bool(reload), "control": control,
         "increments": len(path.increments), "factorisations": path.factorisations,
         "wall_time": path.wall_time, "R_model": R, "delta_factor": eq.delta_factor,
         "newton_iterations_total": int(sum(curves["newton_iterations"])),

@@ -91,3 +91,23 @@ def test_large_contact_warns_about_small_strain():
         warnings.simplefilter("always")
         res = solve_plastic(case(W, soft), mesh=TINY, n_steps=2)
     assert "validity" in res.meta and any("a/R" in str(w.message) for w in rec)
+
+
+def test_approach_control_matches_load_control():
+    """Elastic body (no yield data): the path is reversible, so approach control to the delta that
+    load control reached must give back the load (1e-6), and plastic paths agree to the
+    increment error (1 %)."""
+    elastic = Material(200e9, 0.3)
+    W = 50.0
+    by_load = solve_plastic(case(W, elastic), mesh=TINY, n_steps=2)
+    d = by_load.curves["delta"][-1]
+    by_app = solve_plastic(case(W, elastic), mesh=TINY, n_steps=2, delta_max=d)
+    assert abs(by_app.curves["W"][-1] / W - 1) < 1e-6
+    assert by_app.meta["control"] == "approach"
+    pl_load = solve_plastic(case(2.5 * W_onset()), mesh=TINY, n_steps=4, unload=True)
+    i = pl_load.curves["phase"].index("unloading") - 1
+    pl_app = solve_plastic(case(2.5 * W_onset()), mesh=TINY, n_steps=4, delta_max=pl_load.curves["delta"][i],
+                           unload=True)
+    j = pl_app.curves["phase"].index("unloading") - 1
+    assert abs(pl_app.curves["W"][j] / pl_load.curves["W"][i] - 1) < 0.01
+    assert pl_app.curves["W"][-1] == 0.0  # contact lost before delta = 0 (permanent dent)
