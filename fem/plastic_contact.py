@@ -23,7 +23,8 @@ load balance are below ``rtol`` times the path's largest load. History is commit
 
 Increments: every target of the load path is reached by sub-increments; a failed Newton loop
 (``max_newton`` iterations, or a diverging residual) halves the sub-increment, a converged one
-lets it grow again (x 1.5); after ``max_cutbacks`` halvings :class:`ConvergenceError` is raised.
+lets it grow again (x 1.5); after ``max_cutbacks`` consecutive halvings :class:`ConvergenceError`
+is raised.
 Load ``W = 0`` (full unloading under load control) is solved without contact: the residual
 state.
 """
@@ -297,6 +298,7 @@ class IncrementalContact:
                     continue
                 state, inc = out
                 inc.cutbacks = cut
+                cut = 0  # max_cutbacks counts consecutive failures
                 rec.increments.append(inc)
                 if progress is not None:
                     progress(inc, state, k)
