@@ -11,6 +11,9 @@ yield stress of the coating or of the substrate, and where
 :math:`E_s = 200` GPa, :math:`\nu = 0.3`, :math:`Y_s = 1` GPa; coatings :math:`\nu_c = 0.3`;
 rigid sphere :math:`R = 10` mm.
 
+Claims checked: the homogeneous limit (first yield at p0 = 1.60 Y, z = 0.48 a, Johnson) within
+1 % (p0) and 3 % (depth, coarse mesh); the map itself is reported as an observation.
+
 Location classes: ``coating`` (inside the coating, including its surface), ``interface`` (on
 the interface, either side, within 5 % of h), ``substrate``.
 
