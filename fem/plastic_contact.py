@@ -51,6 +51,12 @@ ROUND_OFF = 1e-7
 #: edge node penetrating by <= 2 % of the approach, or pulling with <= 2 % of the largest nodal
 #: force); the increment records ``cycle = True``.
 CYCLE_ACCEPT = 2e-2
+#: Load control: a Newton step that changes the approach by more than this fraction of the
+#: previous approach is scaled down to it (damped Newton). With few contact nodes and perfectly
+#: plastic flow the linearised contact stiffness ``sum(lambda_2)`` can be small, and the undamped
+#: step overshoots far into the body. Near convergence steps are small, so the damping is idle
+#: and the convergence stays quadratic.
+DELTA_DAMP = 0.5
 
 
 @dataclass
@@ -76,6 +82,7 @@ class PathState:
     u: np.ndarray
     states: list
     active: np.ndarray
+    delta: float = math.nan  # approach of the committed state (load control damping)
 
 
 @dataclass
@@ -230,9 +237,16 @@ class IncrementalContact:
         F, K, _, _ = self.asm.evaluate(u, state.states)
         residuals = []
         seen: set[bytes] = set()
+        delta_prev = state.delta
         for it in range(1, s.max_newton + 1):
             rhs = K @ u - F
             u_new, delta, W, lam = self._linear_step(K, rhs, active, target)
+            if (self.control == "load" and math.isfinite(delta_prev) and delta_prev > 0
+                    and math.isfinite(delta) and abs(delta - delta_prev) > DELTA_DAMP * delta_prev):
+                step = DELTA_DAMP * delta_prev / abs(delta - delta_prev)
+                u_new = u + step * (u_new - u)
+                delta = delta_prev + step * (delta - delta_prev)
+            delta_prev = delta
             lam_full = np.zeros(len(g.cand))
             lam_full[active] = lam
             if self.control == "load" and not no_contact:
@@ -267,7 +281,7 @@ class IncrementalContact:
                 lam_out[active] = lam_eq
                 W_out = float(lam_eq.sum()) if self.control == "approach" else W
                 inc = Increment(target, W_out, delta, it, residuals, 0, active.copy(), lam_out, gap, cycle)
-                return PathState(u, trial, active.copy()), inc
+                return PathState(u, trial, active.copy(), delta), inc
             seen.add(active.tobytes())
             active = new_active
         return None
