@@ -35,8 +35,13 @@ def run_plastic(case: ContactCase, args: argparse.Namespace) -> int:
               f"Newton {inc.newton_iterations:2d}  cutbacks {inc.cutbacks}  "
               f"[{count[0]} increments, {total} targets]", end="", file=sys.stderr, flush=True)
 
+    delta_max = None
+    if getattr(args, "approach", None):
+        from coathertz.units import parse_quantity
+
+        delta_max = parse_quantity(args.approach, "length", name="--approach")
     res = solve_plastic(case, mesh=mesh, n_steps=args.steps, unload=args.unload, reload=args.reload,
-                        keep_snapshots=bool(args.vtu_dir), progress=progress)
+                        keep_snapshots=bool(args.vtu_dir), progress=progress, delta_max=delta_max)
     print(file=sys.stderr)
     if args.vtu_dir:
         paths = write_vtu_series(res, args.vtu_dir)

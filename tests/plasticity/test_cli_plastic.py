@@ -23,6 +23,15 @@ def test_cli_plastic_unload(tmp_path, capsys):
     assert len(list((tmp_path / "vtu").glob("*.vtu"))) == 2
 
 
+def test_cli_plastic_approach_control(capsys):
+    rc = main(["fem", "example:yielding_steel", "--plastic", "--steps", "1", "--mesh", "coarse",
+               "--approach", "1.5 um", "--json"])
+    assert rc == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["meta"]["control"] == "approach" and abs(data["delta"][-1] - 1.5e-6) < 1e-15
+    assert 50.0 < data["W"][-1] < 56.0  # Hertz at 1.5 um: 53.8 N (first yield 1.50 um at 54 N)
+
+
 def test_cli_plastic_needs_yield_data():
     with pytest.raises(CoatHertzError, match="needs yield data"):
         from argparse import Namespace
