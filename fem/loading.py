@@ -13,7 +13,9 @@ linearisation residual ``|F_int(u_new) - F_int(u) - K_t (u_new - u)|`` is below 
 laws ``K_t`` is the constant stiffness (assembled once, fast path of
 :meth:`coathertz.fem.model.FEModel.stiffness`) and one iteration converges; the generic
 quadrature-point path (:func:`internal_force`, :func:`tangent`) is what a J2 law would use and
-is checked against the fast path in the tests.
+is checked against the fast path in the tests. The elastic-plastic model with the B-bar strain,
+cutbacks and unloading is :mod:`coathertz.fem.plastic_contact` (this loop stays the elastic
+model's, displacement form only).
 """
 
 from __future__ import annotations
@@ -67,6 +69,7 @@ class LoadPath:
     newton_iterations: int
     contact_iterations: int
     deltas: list
+    states: list | None = None  # committed history of each region (quadrature layout)
 
 
 def solve_incremental(
@@ -94,7 +97,8 @@ def solve_incremental(
     weights = model.weights_all[cand]
     x = np.zeros(n)
     grid = model.dof_grid() if linear else None  # condensed contact solve (one factorisation)
-    states = [reg.law.initial_state(()) for reg in model.regions]
+    nq = model.basis.X.shape[-1]
+    states = [reg.law.initial_state((len(reg.elements), nq)) for reg in model.regions]
     active = (r <= r[1]) if active0 is None else active0
     newton_total = contact_total = 0
     deltas = []
@@ -129,4 +133,4 @@ def solve_incremental(
         if not linear:
             _, states = internal_force(model, x, states)
         deltas.append(sol.delta)
-    return LoadPath(sol, x, n_steps, newton_total, contact_total, deltas)
+    return LoadPath(sol, x, n_steps, newton_total, contact_total, deltas, states)

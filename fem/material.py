@@ -9,8 +9,8 @@ and the history variables of the last converged increment to the stress
 tangent :math:`\\partial\\sigma/\\partial\\varepsilon` (4 x 4 at every point) and the updated history.
 Arrays carry the quadrature layout ``(..., n_elements, n_points)``. The assembly
 (:mod:`coathertz.fem.forms`) and the incremental loop (:mod:`coathertz.fem.loading`) only use
-this interface, so a J2 law with plastic strain as history can be added without touching the
-mesh or contact code. Only :class:`LinearElastic` exists now.
+this interface. :class:`LinearElastic` is here; the J2 elastic-plastic law (plastic strain and
+equivalent plastic strain as history) is :class:`coathertz.fem.j2.J2Plastic`.
 """
 
 from __future__ import annotations

@@ -128,14 +128,19 @@ def principal(s: np.ndarray) -> np.ndarray:
 
 
 class StressField:
-    """Continuous (per region) Q2 projections of the four stress components; ``at(points)``."""
+    """Continuous (per region) Q2 projections of the four stress components; ``at(points)``.
 
-    def __init__(self, model: FEModel, x: np.ndarray):
+    ``sig`` (optional): quadrature-point stresses per region index, e.g. from a non-linear law's
+    committed state (:mod:`coathertz.fem.plastic_method`); default: the linear-elastic stresses
+    of ``x`` (:func:`quad_stress`).
+    """
+
+    def __init__(self, model: FEModel, x: np.ndarray, sig: dict[int, np.ndarray] | None = None):
         self.model = model
         mesh = model.lm.mesh
         self.full = Basis(mesh, ElementQuad2(), intorder=INTORDER)
         self.nodal = {}
-        sig = quad_stress(model, x)
+        sig = quad_stress(model, x) if sig is None else sig
         for k, reg in enumerate(model.regions):
             sb = Basis(mesh, ElementQuad2(), intorder=INTORDER, elements=reg.elements)
             dofs = np.unique(sb.element_dofs)
@@ -153,9 +158,11 @@ class StressField:
         return np.array([P @ self.nodal[region][i] for i in range(4)])
 
 
-def stress_report(model: FEModel, x: np.ndarray, a: float) -> tuple[dict, dict]:
-    """Axis and interface stress profiles (fields) and their extrema (meta)."""
-    sf = StressField(model, x)
+def stress_report(model: FEModel, x: np.ndarray, a: float,
+                  sig: dict[int, np.ndarray] | None = None) -> tuple[dict, dict]:
+    """Axis and interface stress profiles (fields) and their extrema (meta); ``sig`` as in
+    :class:`StressField`."""
+    sf = StressField(model, x, sig)
     lm = model.lm
     fields: dict[str, np.ndarray] = {}
     meta: dict = {}

@@ -13,6 +13,11 @@ Format (every dimensional value carries its unit; ``"inf"`` is a flat surface)::
     [body2]                    # the (coated) half-space
     material = { E = "200 GPa", nu = 0.3 }
     coating = { E = "380 GPa", nu = 0.17, h = "40 um" }
+
+Optional J2 plasticity (FE ``--plastic`` only) on any elastic material or coating table:
+``Y = "1.2 GPa"`` (yield stress) with ``hardening = "perfect"`` (default), ``"linear"``
+(``H = "5 GPa"``), ``"power"`` (``n = 0.1``, ``eps0 = 0.002``) or ``"table"``
+(``table = [[0, "1.2 GPa"], [0.05, "1.5 GPa"]]``, pairs of plastic strain and flow stress).
 """
 
 from __future__ import annotations
@@ -25,7 +30,7 @@ from typing import Any
 
 from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError
-from coathertz.materials import RIGID, Body, Coating, Material
+from coathertz.materials import RIGID, Body, Coating, Material, Plasticity
 from coathertz.units import parse_quantity
 
 _BODY_KEYS = {"material", "coating", "R", "Rx", "Ry", "name"}
@@ -60,9 +65,10 @@ def _material(spec: Any, where: str) -> Material:
         return RIGID
     if not isinstance(spec, dict):
         raise CoatHertzError(f"{w}: expected 'rigid' or a table {{ E = \"...\", nu = ... }}, got {spec!r}")
-    unknown = set(spec) - {"E", "nu", "name", "h"}
+    unknown = set(spec) - {"E", "nu", "name", "h", *_PLASTIC_KEYS}
     if unknown:
-        raise CoatHertzError(f"{w}: unknown keys {sorted(unknown)}; allowed ['E', 'name', 'nu']")
+        allowed = sorted({"E", "name", "nu", *_PLASTIC_KEYS})
+        raise CoatHertzError(f"{w}: unknown keys {sorted(unknown)}; allowed {allowed}")
     for key in ("E", "nu"):
         if key not in spec:
             raise CoatHertzError(f"{w}: missing {key}")
@@ -70,10 +76,40 @@ def _material(spec: Any, where: str) -> Material:
     nu = spec["nu"]
     if not isinstance(nu, int | float) or isinstance(nu, bool):
         raise CoatHertzError(f"{w} nu must be a plain number in (-1, 0.5], got {nu!r}")
+    plasticity = _plasticity(spec, w)
     try:
-        return Material(E, nu, name=str(spec.get("name", "")))
+        return Material(E, nu, name=str(spec.get("name", "")), plasticity=plasticity)
     except CoatHertzError as exc:
         raise CoatHertzError(f"{w}: {exc}") from None
+
+
+_PLASTIC_KEYS = ("Y", "hardening", "H", "n", "eps0", "table")
+
+
+def _plasticity(spec: dict, where: str) -> Plasticity | None:
+    """The optional yield data of a material table (keys :data:`_PLASTIC_KEYS`)."""
+    given = [k for k in _PLASTIC_KEYS if k in spec]
+    if not given:
+        return None
+    if "Y" not in spec:
+        raise CoatHertzError(f"{where}: plasticity keys {given} need the yield stress Y "
+                             '(e.g. Y = "1.2 GPa")')
+    kw: dict[str, Any] = {"Y": parse_quantity(spec["Y"], "pressure", name=f"{where}.Y"),
+                          "hardening": str(spec.get("hardening", "perfect"))}
+    if "H" in spec:
+        kw["H"] = parse_quantity(spec["H"], "pressure", name=f"{where}.H")
+    for k in ("n", "eps0"):
+        if k in spec:
+            if not isinstance(spec[k], int | float) or isinstance(spec[k], bool):
+                raise CoatHertzError(f"{where}.{k} must be a plain number, got {spec[k]!r}")
+            kw[k] = float(spec[k])
+    if "table" in spec:
+        tab = spec["table"]
+        if not isinstance(tab, list) or not all(isinstance(t, list) and len(t) == 2 for t in tab):
+            raise CoatHertzError(f"{where}.table must be a list of [ep, \"Y\"] pairs, got {tab!r}")
+        kw["table"] = tuple((float(e), parse_quantity(y, "pressure", name=f"{where}.table"))
+                            for e, y in tab)
+    return Plasticity(**kw)
 
 
 def _body(spec: Any, where: str) -> Body:
@@ -165,10 +201,24 @@ def _q(value: float, unit: str, factor: float) -> str:
     return "inf" if math.isinf(value) else f"{value / factor:.12g} {unit}"
 
 
+def _plastic_toml(m: Material) -> str:
+    pl = m.plasticity
+    if pl is None:
+        return ""
+    out = f', Y = "{_q(pl.Y, "MPa", 1e6)}", hardening = "{pl.hardening}"'
+    if pl.hardening == "linear":
+        out += f', H = "{_q(pl.H, "MPa", 1e6)}"'
+    elif pl.hardening == "power":
+        out += f", n = {pl.n!r}, eps0 = {pl.eps0!r}"
+    elif pl.hardening == "table":
+        out += ", table = [" + ", ".join(f'[{e!r}, "{_q(y, "MPa", 1e6)}"]' for e, y in pl.table) + "]"
+    return out
+
+
 def _mat(m: Material) -> str:
     if m.is_rigid:
         return '"rigid"'
-    return f'{{ E = "{_q(m.E, "GPa", 1e9)}", nu = {m.nu!r} }}'
+    return f'{{ E = "{_q(m.E, "GPa", 1e9)}", nu = {m.nu!r}{_plastic_toml(m)} }}'
 
 
 def case_to_toml(case: ContactCase) -> str:
@@ -184,7 +234,7 @@ def case_to_toml(case: ContactCase) -> str:
         if b.coating is not None:
             c = b.coating
             lines.append(f'coating = {{ E = "{_q(c.material.E, "GPa", 1e9)}", nu = {c.material.nu!r}, '
-                         f'h = "{_q(c.h, "um", 1e-6)}" }}')
+                         f'h = "{_q(c.h, "um", 1e-6)}"{_plastic_toml(c.material)} }}')
         lines.append(f'Rx = "{_q(b.Rx, "mm", 1e-3)}"')
         lines.append(f'Ry = "{_q(b.Ry, "mm", 1e-3)}"')
     return "\n".join(lines) + "\n"

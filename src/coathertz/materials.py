@@ -17,15 +17,111 @@ so eqs (2) and (18) need no special case.
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass, field
 
 from coathertz.errors import CoatHertzError, check_positive
 
+HARDENING_LAWS = ("perfect", "linear", "power", "table")
+
+
+@dataclass(frozen=True)
+class Plasticity:
+    """J2 (von Mises) yield with isotropic hardening: the flow stress ``Y(ep)``.
+
+    ``ep`` is the equivalent (accumulated) plastic strain, ``sqrt(2/3 eps_p : eps_p)`` summed
+    over increments. Hardening laws:
+
+    * ``perfect``: ``Y(ep) = Y``;
+    * ``linear``: ``Y(ep) = Y + H ep``;
+    * ``power`` (Swift): ``Y(ep) = Y (1 + ep / eps0)^n``;
+    * ``table``: piecewise linear through ``table = ((0, Y), (ep_1, Y_1), ...)`` (``ep``
+      increasing, first point ``(0, Y)``), constant after the last point.
+
+    Parameters
+    ----------
+    Y
+        Initial yield stress in uniaxial tension [Pa], ``0 < Y < inf``.
+    hardening
+        One of :data:`HARDENING_LAWS`.
+    H
+        Linear hardening modulus ``dY/dep`` [Pa], ``H >= 0`` (``linear`` only).
+    n, eps0
+        Power-law exponent ``0 <= n < 1`` and reference strain ``eps0 > 0`` (``power`` only).
+    table
+        ``(ep, Y)`` pairs [-, Pa] (``table`` only).
+    """
+
+    Y: float
+    hardening: str = "perfect"
+    H: float = 0.0
+    n: float = 0.0
+    eps0: float = 0.0
+    table: tuple[tuple[float, float], ...] = ()
+
+    def __post_init__(self) -> None:
+        check_positive("yield stress Y", self.Y)
+        object.__setattr__(self, "Y", float(self.Y))
+        if self.hardening not in HARDENING_LAWS:
+            raise CoatHertzError(f"hardening must be one of {HARDENING_LAWS}, got {self.hardening!r}")
+        if self.hardening == "linear" and not (0.0 <= float(self.H) < math.inf):
+            raise CoatHertzError(f"linear hardening modulus H must satisfy 0 <= H < inf [Pa], "
+                                 f"got {self.H!r}")
+        if self.hardening == "power":
+            if not (0.0 <= float(self.n) < 1.0):
+                raise CoatHertzError(f"power-law hardening exponent n must satisfy 0 <= n < 1, "
+                                     f"got {self.n!r}")
+            check_positive("power-law reference strain eps0", self.eps0)
+        if self.hardening == "table":
+            try:
+                tab = tuple((float(e), float(y)) for e, y in self.table)
+            except (TypeError, ValueError) as exc:
+                raise CoatHertzError(f"hardening table must be (ep, Y) pairs, got {self.table!r}") from exc
+            ep = [t[0] for t in tab]
+            if len(tab) < 2 or ep[0] != 0.0 or any(b <= a for a, b in itertools.pairwise(ep)):
+                raise CoatHertzError("hardening table needs >= 2 (ep, Y) pairs, ep increasing from 0, "
+                                     f"got {self.table!r}")
+            if tab[0][1] != self.Y or any(y <= 0 for _, y in tab):
+                raise CoatHertzError(f"hardening table must start at (0, Y = {self.Y:g}) with Y > 0, "
+                                     f"got {self.table!r}")
+            object.__setattr__(self, "table", tab)
+        for k in ("H", "n", "eps0"):
+            object.__setattr__(self, k, float(getattr(self, k)))
+
+    def flow_stress(self, ep):
+        """``(Y(ep), dY/dep)`` for an array of equivalent plastic strains ``ep >= 0``."""
+        import numpy as np
+
+        ep = np.asarray(ep, dtype=float)
+        if self.hardening == "perfect":
+            return np.full_like(ep, self.Y), np.zeros_like(ep)
+        if self.hardening == "linear":
+            return self.Y + self.H * ep, np.full_like(ep, self.H)
+        if self.hardening == "power":
+            x = 1.0 + ep / self.eps0
+            return self.Y * x**self.n, self.Y * self.n / self.eps0 * x ** (self.n - 1.0)
+        e = np.array([t[0] for t in self.table])
+        y = np.array([t[1] for t in self.table])
+        slope = np.append(np.diff(y) / np.diff(e), 0.0)
+        i = np.clip(np.searchsorted(e, ep, side="right") - 1, 0, len(e) - 1)
+        return y[i] + slope[i] * (np.minimum(ep, e[-1]) - e[i]), slope[i]
+
+    def key(self) -> dict:
+        """Canonical description (result-store key)."""
+        d: dict = {"Y": self.Y, "hardening": self.hardening}
+        if self.hardening == "linear":
+            d["H"] = self.H
+        elif self.hardening == "power":
+            d.update(n=self.n, eps0=self.eps0)
+        elif self.hardening == "table":
+            d["table"] = [list(t) for t in self.table]
+        return d
+
 
 @dataclass(frozen=True)
 class Material:
-    """Isotropic linear-elastic material.
+    """Isotropic linear-elastic material, optionally with J2 plasticity.
 
     Parameters
     ----------
@@ -35,14 +131,23 @@ class Material:
         Poisson's ratio, ``-1 < nu <= 0.5``.
     name
         Optional label used in reports.
+    plasticity
+        Optional :class:`Plasticity` (yield stress and hardening); ``None``: elastic throughout.
+        Only the FE model's incremental elastic-plastic solver uses it.
     """
 
     E: float
     nu: float
     name: str = field(default="", compare=False)
+    plasticity: Plasticity | None = None
 
     def __post_init__(self) -> None:
         check_positive("Young's modulus E", self.E, allow_inf=True)
+        if self.plasticity is not None:
+            if not isinstance(self.plasticity, Plasticity):
+                raise CoatHertzError(f"plasticity must be a Plasticity or None, got {self.plasticity!r}")
+            if math.isinf(float(self.E)):
+                raise CoatHertzError("a rigid material (E = inf) cannot have plasticity data")
         try:
             nu = float(self.nu)
         except (TypeError, ValueError) as exc:

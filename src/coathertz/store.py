@@ -71,7 +71,10 @@ def _num(x: float) -> Any:
 
 
 def _material_dict(m: Material) -> dict:
-    return {"E": _num(m.E), "nu": _num(m.nu)}
+    d = {"E": _num(m.E), "nu": _num(m.nu)}
+    if getattr(m, "plasticity", None) is not None:  # J2 yield data (issue 11) keys the case too
+        d["plasticity"] = m.plasticity.key()
+    return d
 
 
 def _body_dict(b: Body) -> dict:

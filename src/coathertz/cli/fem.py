@@ -25,6 +25,15 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="linear solver (default: direct)")
     parser.add_argument("--vtu", metavar="OUT.vtu", help="write mesh, displacement and stresses")
     parser.add_argument("--json", action="store_true", help="machine-readable output")
+    g = parser.add_argument_group("elastic-plastic (J2) load path; yield data from the case's materials")
+    g.add_argument("--plastic", action="store_true", help="incremental elastic-plastic solution")
+    g.add_argument("--unload", action="store_true", help="unload to zero after loading (residual state)")
+    g.add_argument("--reload", action="store_true", help="reload to W after unloading")
+    g.add_argument("--steps", type=int, default=10, help="load increments to W (default 10)")
+    g.add_argument("--approach", metavar="DELTA", help="approach control to DELTA (e.g. '20 um') instead of "
+                   "load control (deep indentation); W only sizes the mesh")
+    g.add_argument("--vtu-dir", metavar="DIR", help="--plastic: one VTU per increment (plastic strain)")
+    g.add_argument("--out-json", metavar="OUT.json", help="--plastic: write the curves and profiles")
 
 
 def _solve(method, case):
@@ -53,6 +62,7 @@ def run(args: argparse.Namespace) -> int:
         finish,
         format_table,
         list_examples,
+        output_dir,
         print_json_or_header,
     )
     from coathertz.fem.method import FEMMethod
@@ -62,6 +72,14 @@ def run(args: argparse.Namespace) -> int:
     case = case_from_args(args)
     if args.vtu:
         check_output_file(args.vtu, "--vtu")
+    if args.plastic:
+        if args.out_json:
+            check_output_file(args.out_json, "--out-json")
+        if args.vtu_dir:
+            output_dir(args.vtu_dir, "--vtu-dir")
+        from coathertz.fem.plastic_cli import run_plastic
+
+        return run_plastic(case, args)
     method = FEMMethod(mesh=args.mesh, contact=args.contact, solver=args.solver, stresses=True)
     res, model, path = _solve(method, case)
     res = finish(case, res)

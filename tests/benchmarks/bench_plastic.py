@@ -1,0 +1,52 @@
+"""Benchmark of the elastic-plastic FE load path (a script, not part of the test run).
+
+One load-unload path of a rigid sphere (R = 10 mm) on a yielding steel half-space (E = 200 GPa,
+nu = 0.3, Y = 1 GPa, perfectly plastic) to 3x the first-yield load, ``--steps`` loading and as
+many unloading increments (default 10 + 10 = 20) on the ``default`` plastic mesh (20 elements
+across the reference contact radius). Goal: <= 60 s on 2 cores. Prints wall and CPU time, the
+Newton iterations of every increment and the time per factorisation.
+
+Usage: ``python tests/benchmarks/bench_plastic.py [--steps 10] [--mesh default]``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import platform
+import time
+
+from coathertz.case import ContactCase
+from coathertz.fem.plastic_method import solve_plastic
+from coathertz.materials import Body, Material, Plasticity
+
+Y, R = 1e9, 0.01
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--steps", type=int, default=10)
+    ap.add_argument("--mesh", default="default", choices=["coarse", "default", "fine"])
+    args = ap.parse_args(argv)
+    mat = Material(200e9, 0.3, plasticity=Plasticity(Y))
+    W_y = (1.6128 * Y) ** 3 * math.pi**3 * R**2 / (6 * mat.E_star**2)
+    case = ContactCase(Body.rigid_sphere(R), Body.half_space(mat), 3.0 * W_y)
+    t0, c0 = time.perf_counter(), time.process_time()
+    res = solve_plastic(case, mesh=args.mesh, n_steps=args.steps, unload=True)
+    wall, cpu = time.perf_counter() - t0, time.process_time() - c0
+    m, c = res.meta, res.curves
+    print(f"machine: {platform.processor() or platform.machine()}, {os.cpu_count()} cpus "
+          f"(load average {os.getloadavg()[0]:.1f})")
+    print(f"mesh {args.mesh}: {m['elements']} Q2 elements, {m['dofs']} dofs; {m['increments']} increments "
+          f"({2 * args.steps} targets), {m['newton_iterations_total']} Newton iterations, "
+          f"{m['factorisations']} factorisations")
+    print(f"wall {wall:.1f} s, CPU {cpu:.1f} s (goal: <= 60 s on 2 cores)")
+    print("Newton iterations per increment:", " ".join(str(k) for k in c["newton_iterations"]))
+    print(f"residual depth {res.final['residual_depth'] * 1e9:.2f} nm, "
+          f"max ep {m['plastic_zone']['ep_max']:.4g}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

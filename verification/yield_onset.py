@@ -1,0 +1,172 @@
+r"""Yield onset of coated half-spaces under a rigid sphere: load of first yield and where it occurs.
+
+Not a figure of the paper: an extension (issue 11). For each coating (modulus ratio
+:math:`E = E_c^*/E_s^*`, thickness :math:`H = h/a_{ys}`, yield-stress ratio :math:`Y_c/Y_s`) the
+elastic FE solution gives the load :math:`W_y` at which the von Mises stress first reaches the
+yield stress of the coating or of the substrate, and where
+(:func:`coathertz.fem.plastic_onset.yield_onset`). Normalisation: :math:`W_{ys}` and
+:math:`a_{ys}` are the first-yield load and the Hertz contact radius of the uncoated substrate
+(:math:`p_0 = 1.61\, Y_s` for :math:`\nu = 0.3`, Johnson 1985, Section 6.2), so
+:math:`W_y/W_{ys} < 1` means the coating makes the system yield earlier. Substrate: steel,
+:math:`E_s = 200` GPa, :math:`\nu = 0.3`, :math:`Y_s = 1` GPa; coatings :math:`\nu_c = 0.3`;
+rigid sphere :math:`R = 10` mm.
+
+Claims checked: the homogeneous limit (first yield at p0 = 1.60 Y, z = 0.48 a, Johnson) within
+1 % (p0) and 3 % (depth, coarse mesh); the map itself is reported as an observation.
+
+Location classes: ``coating`` (inside the coating, including its surface), ``interface`` (on
+the interface, either side, within 5 % of h), ``substrate``.
+
+The FE solves do not go through the method registry and the result store (they are not
+``ContactResult`` rows): ``analyse`` runs them itself, so the study relies only on
+:class:`coathertz.verification._common.StudyCase`, ``Claim``, ``StudyResult``, ``figure`` and
+``save``. Resolutions: ``tiny`` 2 cases (tests), ``quick`` 5 cases (E = 1/4 and 4 at H = 0.3,
+Yc/Ys = 1 and 3) at 12 elements across a (~25 s wall on the shared 2 cores, ~6 s CPU), ``full``
+5 E x 6 H x 3 Yc/Ys = 90 cases at 20 elements across a.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import warnings
+
+import numpy as np
+
+from coathertz.case import ContactCase
+from coathertz.hertz import hertz_circular
+from coathertz.materials import Material
+
+from . import _common as C
+
+NAME = "yield_onset"
+TITLE = "Yield onset: load of first yield (normalised by the uncoated substrate's) and its location"
+CLAIM = ("Extension (not in the paper): homogeneous limit p0 = 1.60 Y at z = 0.48 a (Johnson); map of "
+         "W_y/W_ys and of where first yield occurs over E in [1/4, 4], H in [0.01, 3], Yc/Ys.")
+R = 10e-3
+ES, NU, YS = 200e9, 0.3, 1e9
+CLASSES = ("coating", "interface", "substrate")
+COLOURS = {"coating": "tab:red", "interface": "tab:purple", "substrate": "tab:blue"}
+
+
+def substrate_reference() -> tuple[float, float]:
+    """``(W_ys, a_ys)``: first-yield load and Hertz radius of the uncoated substrate."""
+    from coathertz.fem.plastic_onset import hertz_axis_onset
+
+    p0y, _ = hertz_axis_onset(NU)
+    Es_star = Material(ES, NU).E_star
+    W = (p0y * YS) ** 3 * math.pi**3 * R**2 / (6.0 * Es_star**2)  # Johnson eq 4.23 inverted
+    return W, float(hertz_circular(W, R, Es_star).a0)
+
+
+def grid(resolution: str) -> tuple[list[float], list[float], list[float]]:
+    C.check_resolution(resolution)
+    if resolution == "full":
+        return [0.25, 0.5, 1.0, 2.0, 4.0], [0.01, 0.03, 0.1, 0.3, 1.0, 3.0], [1.0, 2.0, 4.0]
+    if resolution == "quick":
+        return [0.25, 4.0], [0.3], [1.0, 3.0]
+    return [4.0], [1.0], [1.0]
+
+
+def fem_settings(resolution: str) -> dict:
+    """Elastic FE mesh of the onset solves: 12 elements across a (tiny/quick), 20 (full)."""
+    return {"mesh": "coarse", "n_a": 12 if resolution in ("tiny", "quick") else 20}
+
+
+def cases(resolution: str) -> list[C.StudyCase]:
+    """The homogeneous reference plus the (E, H, Yc/Ys) grid; ``methods`` is empty (see docstring)."""
+    Es_star = Material(ES, NU).E_star
+    W_ys, a_ys = substrate_reference()
+    out = [C.StudyCase("homogeneous", ContactCase.sphere_on_coated_half_space(
+        R, W_ys, Material(ES, NU), 0.0, Material(ES, NU), label="homogeneous"),
+        {"E": 1.0, "H": 0.0, "Yc_Ys": 1.0}, frozenset())]
+    if resolution == "tiny":
+        out = out[:1]
+    Es_, Hs, ratios = grid(resolution)
+    for E in Es_:
+        coat = Material(E * Es_star * (1.0 - NU**2), NU)
+        for H in Hs:
+            for q in ratios:
+                cid = f"E={E:g},H={H:g},Yc/Ys={q:g}"
+                case = ContactCase.sphere_on_coated_half_space(R, W_ys, coat, H * a_ys, Material(ES, NU),
+                                                               label=cid)
+                out.append(C.StudyCase(cid, case, {"E": E, "H": H, "Yc_Ys": q}, frozenset()))
+    return out
+
+
+def analyse(result: C.StudyResult) -> None:
+    from coathertz.fem.method import FEMMethod
+    from coathertz.fem.plastic_onset import hertz_axis_onset, yield_onset
+
+    W_ys, a_ys = substrate_reference()
+    method = FEMMethod(**fem_settings(result.resolution))
+    rows, t0 = [], time.perf_counter()
+    for sc in cases(result.resolution):
+        p = sc.params
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                o = yield_onset(sc.case, method, Yc=p["Yc_Ys"] * YS, Ys=YS)
+        except Exception as exc:  # reported, not fatal: one case must not sink the map
+            result.failures.append({"case": sc.id, **p, "method": "fem-onset", "error": repr(exc)})
+            continue
+        rows.append({"case": sc.id, **p, "W_y": o.W_y, "W_bar": o.W_y / W_ys, "p0_over_Y": o.p0_over_Y,
+                     "where": o.where, "region": o.region, "r_over_a": o.r / o.a_y, "z_over_a": -o.z / o.a_y,
+                     "depth_over_h": (-o.z / sc.case.body2.coating.h) if p["H"] > 0 else math.nan,
+                     "a_y": o.a_y, "solves": o.solves})
+    result.extra["onset"] = rows
+    result.extra["W_ys"], result.extra["a_ys"] = W_ys, a_ys
+    result.extra["fem_settings"] = fem_settings(result.resolution)
+    result.method_time["fem-onset"] = time.perf_counter() - t0
+    result.methods = ["fem-onset"]
+    result.computed = len(rows)
+    p0_cf, z_cf = hertz_axis_onset(NU)
+    hom = [r for r in rows if r["case"] == "homogeneous"]
+    if hom:
+        h = hom[0]
+        result.claims.append(C.Claim(
+            "yield-onset-homogeneous-p0", "homogeneous half-space: p0/Y at first yield vs Johnson's 1.60",
+            100 * abs(h["p0_over_Y"] / 1.60 - 1), "< 1 %", bool(abs(h["p0_over_Y"] / 1.60 - 1) < 0.01),
+            "%", 0.05,
+            f"FE p0/Y = {h['p0_over_Y']:.4f} (Hertz axis stresses: {p0_cf:.4f}), "
+            f"{fem_settings(result.resolution)['n_a']} elements across a"))
+        result.claims.append(C.Claim(
+            "yield-onset-homogeneous-z", "homogeneous half-space: depth of first yield z/a vs Johnson's 0.48",
+            100 * abs(h["z_over_a"] / 0.48 - 1), "< 3 % (coarse mesh; 1 % at 40 elements across a)",
+            bool(abs(h["z_over_a"] / 0.48 - 1) < 0.03), "%", 0.5,
+            f"FE z/a = {h['z_over_a']:.4f} (Hertz: {z_cf:.4f}), r/a = {h['r_over_a']:.3f}"))
+    coated = [r for r in rows if r["H"] > 0]
+    if coated:
+        counts = {c: sum(r["where"] == c for r in coated) for c in CLASSES}
+        worst = min(coated, key=lambda r: r["W_bar"])
+        result.claims.append(C.Claim(
+            "yield-onset-map", "coated cases: smallest W_y/W_ys (observation)", worst["W_bar"],
+            "(observation)", None, "", 0.05,
+            f"at {worst['case']} ({worst['where']}); first yield in coating / interface / substrate: "
+            f"{counts['coating']} / {counts['interface']} / {counts['substrate']} of {len(coated)}"))
+
+
+def plot(result: C.StudyResult, outdir) -> list:
+    rows = [r for r in result.extra.get("onset", []) if r["H"] > 0]
+    ratios = sorted({r["Yc_Ys"] for r in rows}) or [1.0]
+    fig, axes = C.figure(len(ratios), 1, width=4.6, height=4.0)
+    for ax, q in zip(axes[0], ratios, strict=True):
+        sel = [r for r in rows if r["Yc_Ys"] == q]
+        for cls in CLASSES:
+            pts = [(r["H"], r["E"], r["W_bar"]) for r in sel if r["where"] == cls]
+            if pts:
+                H, E, Wb = np.array(pts).T
+                ax.scatter(H, E, s=260, marker="s", c=COLOURS[cls], alpha=0.75, label=f"first yield: {cls}")
+                for h_, e_, w_ in zip(H, E, Wb, strict=True):
+                    ax.annotate(f"{w_:.2g}", (h_, e_), ha="center", va="center", fontsize=6, color="white")
+        ax.set_xscale("log")
+        ax.set_yscale("log", base=2)
+        ax.set_xlabel(r"$H = h / a_{ys}$")
+        ax.set_ylabel(r"$E = E_c^* / E_s^*$")
+        ax.set_title(rf"$Y_c/Y_s$ = {q:g}; numbers: $W_y/W_{{ys}}$", fontsize=9)
+        ax.grid(alpha=0.3, which="both")
+        ax.margins(0.15)
+        if ax is axes[0, 0]:
+            ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.18), ncol=3, markerscale=0.4)
+    fig.tight_layout()
+    return C.save(fig, outdir, "yield_onset")
