@@ -37,8 +37,6 @@ CLAIM = ("The refitted rule predicts delta, a, p0 within 0.3 % (circular) and r_
 QUANTITIES = ("a", "p", "delta")
 BOUND_CIRC = 0.3
 BOUND_ELL = 1.0
-#: preference order of the exact reference (highest first), used when methods carry no rank
-REFERENCE_ORDER = ("axisym", "fem", "fft")
 FIELDS = {"a": "a", "p": "p0", "delta": "delta", "r_a": "r_a", "r_b": "r_b"}
 
 
@@ -75,30 +73,28 @@ def _cid(p: Point) -> str:
     return f"{p.config}:E={p.E:.4g},H={p.H:.4g},nu_c={p.nu_c:g},nu_s={p.nu_s:g},rho={p.rho:g}"
 
 
-#: circular cases: the closed form, the exact axisymmetric method and the FFT (spot check)
-CIRCULAR = frozenset({C.CLOSED, "fft", "axisym"})
-
-
-def _study_case(p: Point) -> C.StudyCase:
-    if "tier" in getattr(C.StudyCase, "__dataclass_fields__", {}):  # registry-driven protocol
-        return C.StudyCase(_cid(p), make_case(p), _params(p), tier="moderate")
-    return C.StudyCase(_cid(p), make_case(p), _params(p), C.CF_FFT if p.config == "ellipse" else CIRCULAR)
+def _spot_checked(pts: list[Point]) -> set[Point]:
+    """The circular points worth an expensive method too (FE spot check): per configuration and
+    Poisson ratio, the middle of the H range at the largest modulus ratio."""
+    out = set()
+    groups: dict[tuple, list[Point]] = {}
+    for p in pts:
+        if p.config != "ellipse":
+            groups.setdefault((p.config, p.nu_c), []).append(p)
+    for g in groups.values():
+        top = max(p.E for p in g)
+        sel = sorted((p for p in g if p.E == top), key=lambda p: p.H)
+        out.add(sel[len(sel) // 2])
+    return out
 
 
 def cases(resolution: str) -> list[C.StudyCase]:
-    return [_study_case(p) for p in points(resolution)]
-
-
-def _reference(methods: set[str]) -> str | None:
-    from coathertz.methods import get_method  # noqa: F401  (rank lives on the classes)
-
-    ranked = []
-    for m in methods:
-        if m == C.CLOSED:
-            continue
-        rank = {n: 30 - 10 * i for i, n in enumerate(REFERENCE_ORDER)}.get(m, 0)
-        ranked.append((rank, m))
-    return max(ranked)[1] if ranked else None
+    """Every point at tier ``moderate`` (closed form, exact method, FFT); a few circular points
+    at ``expensive`` (FE spot check as well)."""
+    pts = points(resolution)
+    spot = _spot_checked(pts) if resolution != "tiny" else set()
+    return [C.StudyCase(_cid(p), make_case(p), _params(p), tier="expensive" if p in spot else "moderate")
+            for p in pts]
 
 
 def analyse(result: C.StudyResult) -> None:
@@ -108,7 +104,7 @@ def analyse(result: C.StudyResult) -> None:
         by_case.setdefault(r["case"], {})[r["method"]] = r
     recs = []
     for cid, ms in by_case.items():
-        ref = _reference(set(ms))
+        ref = result.reference.get(cid)  # the arbiter: top-ranked method that solved the case
         if ref is None or C.CLOSED not in ms:
             continue
         row = ms[ref]
@@ -125,19 +121,26 @@ def analyse(result: C.StudyResult) -> None:
                          "paper": 100.0 * (ms[C.CLOSED][f] / exact - 1.0),
                          "refit": 100.0 * (getattr(pred, f) / exact - 1.0)})
     result.extra["refit_errors"] = recs
-    # spot check of the exact method by the FFT on the same circular cases
+    # spot checks of the reference by the other numerical methods on the same circular cases
+    others = sorted({m for ms in by_case.values() for m in ms} - {C.CLOSED})
     for cfg in ("elastic", "rigid"):
-        d = {q: [] for q in QUANTITIES}
-        for ms in by_case.values():
-            if "axisym" in ms and "fft" in ms and ms["axisym"]["config"] == cfg:
-                for q in QUANTITIES:
-                    d[q].append(abs(ms["fft"][FIELDS[q]] / ms["axisym"][FIELDS[q]] - 1) * 100)
-        if d["a"]:
-            v = {q: max(x) for q, x in d.items()}
-            result.claims.append(C.Claim(
-                f"refit-{cfg}-fft-vs-axisym", f"{cfg}: FFT spot check of the exact method, max |diff|",
-                max(v.values()), "(observation)", None, "%", 0.05,
-                f"{len(d['a'])} cases; " + ", ".join(f"{q} {x:.3g} %" for q, x in v.items())))
+        for m in others:
+            d = {q: [] for q in QUANTITIES}
+            refs = set()
+            for cid, ms in by_case.items():
+                ref = result.reference.get(cid)
+                if ref and ref != m and m in ms and ms[ref]["config"] == cfg:
+                    refs.add(ref)
+                    for q in QUANTITIES:
+                        d[q].append(abs(ms[m][FIELDS[q]] / ms[ref][FIELDS[q]] - 1) * 100)
+            if d["a"]:
+                v = {q: max(x) for q, x in d.items()}
+                against = "/".join(sorted(refs)).upper()
+                result.claims.append(C.Claim(
+                    f"refit-{cfg}-{m}-vs-{against.lower()}",
+                    f"{cfg}: {m.upper()} spot check of the reference ({against}), max |diff|",
+                    max(v.values()), "(observation)", None, "%", 0.05,
+                    f"{len(d['a'])} cases; " + ", ".join(f"{q} {x:.3g} %" for q, x in v.items())))
     result.extra["data_file"] = {k: rule.data["provenance"].get(k) for k in
                                  ("code_version", "circular_method", "sweep_sha256", "created_utc")}
     for cfg, bound in (("elastic", BOUND_CIRC), ("rigid", BOUND_CIRC), ("ellipse", BOUND_ELL)):

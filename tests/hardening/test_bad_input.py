@@ -20,8 +20,9 @@ TABLE = [
     ("binary case file", ["predict", "binary.toml"], ["binary.toml", "not a text"]),
     ("directory as case file", ["predict", "dircase"], ["dircase", "is a directory"]),
     ("missing case file", ["predict", "nothere.toml"], ["does not exist", "example:b4c_on_steel"]),
+    # refused before building: the mesh would not fit in memory, and a/R says why (issue 12 items 1, 5)
     ("fem at W = 1e12 N", ["fem", "big_load.toml", "--mesh", "coarse"],
-     ["did not converge", "a/R = 32", "lower the load W"]),
+     ["max_memory_gb", "a/R ~ 32", "outside the half-space model"]),
     ("--save-fields into a missing folder",
      ["fft", "example:b4c_on_steel", "--save-fields", "nodir/x.npz"],
      ["--save-fields", "'nodir' does not exist"]),
