@@ -24,11 +24,10 @@ import warnings
 
 import numpy as np
 
+from coathertz import verification as C
 from coathertz.refit import load
 from coathertz.refit import predict as refit_predict
 from coathertz.refit.sweep import Point, make_case
-
-from . import _common as C
 
 NAME = "refit"
 TITLE = "Issue 10: refitted alpha vs the paper's rule, against the exact method"

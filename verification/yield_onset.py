@@ -19,7 +19,7 @@ the interface, either side, within 5 % of h), ``substrate``.
 
 The FE solves do not go through the method registry and the result store (they are not
 ``ContactResult`` rows): ``analyse`` runs them itself, so the study relies only on
-:class:`coathertz.verification._common.StudyCase`, ``Claim``, ``StudyResult``, ``figure`` and
+:class:`coathertz.verification.StudyCase`, ``Claim``, ``StudyResult``, ``figure`` and
 ``save``. Resolutions: ``tiny`` 2 cases (tests), ``quick`` 5 cases (E = 1/4 and 4 at H = 0.3,
 Yc/Ys = 1 and 3) at 12 elements across a (~25 s wall on the shared 2 cores, ~6 s CPU), ``full``
 5 E x 6 H x 3 Yc/Ys = 90 cases at 20 elements across a.
@@ -33,11 +33,10 @@ import warnings
 
 import numpy as np
 
+from coathertz import verification as C
 from coathertz.case import ContactCase
 from coathertz.hertz import hertz_circular
 from coathertz.materials import Material
-
-from . import _common as C
 
 NAME = "yield_onset"
 TITLE = "Yield onset: load of first yield (normalised by the uncoated substrate's) and its location"

@@ -5,7 +5,7 @@ Reports, in one run:
 1. the median time per case (keep_fields off and on) over a sample of fig-3 cases, tables warm
    (goal: <= 20 ms per case);
 2. the wall time of the full fig-3 grid, 25 modulus ratios x 101 H in [0.01, 3] (2525 cases,
-   ``verification._common``), on ``--workers`` processes (default 2; goal: <= 30 s);
+   ``coathertz.verification``), on ``--workers`` processes (default 2; goal: <= 30 s);
 3. the accuracy of the default settings against a reference with ~2x the modes and denser
    quadrature (n_modes = 2 x default + 16, 20 nodes per panel, decay 30) on 25 E x 7 H
    (goal: <= 1e-6 in delta, a, p0).
@@ -31,7 +31,7 @@ from concurrent.futures import ProcessPoolExecutor
 import numpy as np
 
 from coathertz.axisym import AxisymMethod
-from coathertz.verification._common import elastic_case, fig3_ratios, h_grid
+from coathertz.verification import elastic_case, fig3_ratios, h_grid
 
 QS = ("delta", "a", "p0")
 

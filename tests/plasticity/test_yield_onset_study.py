@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from coathertz.verification import _common as C
+from coathertz import verification as C
 from coathertz.verification import get_study
 
 

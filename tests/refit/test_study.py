@@ -9,11 +9,11 @@ import warnings
 
 import pytest
 
+from coathertz import verification as C
 from coathertz.methods import get_method
 from coathertz.refit import predict
 from coathertz.refit.sweep import Point, make_case
 from coathertz.store import ResultStore
-from coathertz.verification import _common as C
 from coathertz.verification import get_study
 
 
