@@ -36,6 +36,8 @@ CLAIM = ("The refitted rule predicts delta, a, p0 within 0.3 % (circular) and r_
 QUANTITIES = ("a", "p", "delta")
 BOUND_CIRC = 0.3
 BOUND_ELL = 1.0
+#: smallest |error| drawn on the log axes (an exact limit gives 0)
+FLOOR = 1e-4
 FIELDS = {"a": "a", "p": "p0", "delta": "delta", "r_a": "r_a", "r_b": "r_b"}
 
 
@@ -200,12 +202,13 @@ def plot(result: C.StudyResult, outdir) -> list:
             for rule_name, mk in (("paper", "x"), ("refit", "o")):
                 rs = [r for r in other if r["config"] == cfg]
                 if rs:
-                    ax.plot([r["H"] for r in rs], [abs(r[rule_name]) for r in rs], mk, ms=4, label=rule_name)
+                    ax.plot([r["H"] for r in rs], [max(abs(r[rule_name]), FLOOR) for r in rs], mk, ms=4,
+                            label=rule_name)
             ax.axhline(BOUND_CIRC if cfg == "rigid" else BOUND_ELL, color="k", lw=0.8, ls="--")
             ax.set_xscale("log")
             ax.set_yscale("log")
             ax.set_xlabel("H")
-            ax.set_ylabel("|error| [%]")
+            ax.set_ylabel(f"|error| [%] (floored at {FLOOR:g} %)")
             ax.set_title(f"{cfg}: all quantities", fontsize=9)
             ax.legend(fontsize=7)
         fig.tight_layout()
