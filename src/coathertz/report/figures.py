@@ -85,7 +85,7 @@ def pairwise_plot(result, outdir: str | Path, quantities: Sequence[str] | None =
         return []
     qs = [q for q in ("a", "r_a", "r_b", "p", "delta") if any(d["quantity"] == q for d in diffs)]
     pairs = sorted({d["pair"] for d in diffs})
-    use_h = all("H" in d for d in diffs)
+    use_h = all("H" in d and d["H"] > 0 for d in diffs)  # a log axis of H (H = 0: uncoated)
     fig, axes = plt.subplots(1, len(pairs), figsize=(4.4 * len(pairs), 3.4), squeeze=False)
     markers = dict(zip(qs, "os^vD", strict=False))
     for j, pair in enumerate(pairs):
