@@ -44,10 +44,31 @@ COMMANDS = [
 ]
 
 
+#: Numbers the README quotes from a command's output, by the command's first words.
+QUOTED = {
+    "coathertz fit-alpha": ["0.035", "0.854", "1.016", "85.25", "98.87", "5114.36", "2.484", "4.269",
+                            "2.888", "6.83", "15.49", "21.30", "1.448", "1.894", "0.566", "3.398", "7.99",
+                            "14.29", "9.11", "9.14", "16 of 1605", "2.56 %", "0.00e+00 (matches)"],
+    "coathertz fem example:yielding_steel --plastic": ["28710", "20 increments", "1913", "29.12-178.9",
+                                                       "0.00355", "0.24762"],
+}
+
+
 @pytest.mark.parametrize("command", COMMANDS)
 def test_readme_command_runs(command, capsys):
     assert main(shlex.split(command)[1:]) == 0
-    assert capsys.readouterr().out.strip()
+    out = capsys.readouterr().out
+    assert out.strip()
+    text = README.read_text()
+    for prefix, numbers in QUOTED.items():
+        if command.startswith(prefix):
+            for number in numbers:
+                assert number in out, f"`{command}` does not print {number!r}"
+                assert number.replace("-", "–") in text or number in text, number
+
+
+def test_quoted_commands_are_in_the_readme():
+    assert all(any(c.startswith(p) for c in COMMANDS) for p in QUOTED)
 
 
 def test_readme_numbers_are_what_predict_prints(capsys):
