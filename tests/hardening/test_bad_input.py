@@ -18,6 +18,11 @@ VERIFY = ["verify", "--tiny", "--study", "fig3", "--method", "closed-form", "--n
 #: (id, argv, words the message must contain)
 TABLE = [
     ("binary case file", ["predict", "binary.toml"], ["binary.toml", "not a text"]),
+    ("fem --plastic --steps 0", ["fem", "example:yielding_steel", "--plastic", "--steps", "0"],
+     ["--steps", "[1, 10000]", "got 0"]),
+    ("--plastic without yield data", ["fem", "example:b4c_on_steel", "--plastic"], ["needs yield data", "Y ="]),
+    ("axisym on an elliptical case", ["axisym", "example:elliptical_fig10"], ["not axisymmetric", "use fft"]),
+    ("axisym --modes 1", ["axisym", "example:keer_case_a", "--modes", "1"], ["--modes", "[2, 400]", "got 1"]),
     ("directory as case file", ["predict", "dircase"], ["dircase", "is a directory"]),
     ("missing case file", ["predict", "nothere.toml"], ["does not exist", "example:b4c_on_steel"]),
     # refused before building: the mesh would not fit in memory, and a/R says why (issue 12 items 1, 5)

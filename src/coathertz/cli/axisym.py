@@ -35,12 +35,15 @@ def run(args: argparse.Namespace) -> int:
         list_examples,
         print_json_or_header,
     )
+    from coathertz.errors import CoatHertzError
 
     if args.list_examples:
         return list_examples()
     case = case_from_args(args)
     if args.save_fields:
         check_output_file(args.save_fields, "--save-fields")
+    if args.modes is not None and not 2 <= args.modes <= 400:
+        raise CoatHertzError(f"--modes: Legendre modes must be an integer in [2, 400], got {args.modes}")
     method = AxisymMethod(interface=args.interface, n_modes=args.modes)
     res = finish(case, method.solve(case))
     if args.save_fields:

@@ -65,6 +65,7 @@ def run(args: argparse.Namespace) -> int:
         output_dir,
         print_json_or_header,
     )
+    from coathertz.errors import CoatHertzError
     from coathertz.fem.method import FEMMethod
 
     if args.list_examples:
@@ -73,6 +74,9 @@ def run(args: argparse.Namespace) -> int:
     if args.vtu:
         check_output_file(args.vtu, "--vtu")
     if args.plastic:
+        if not 1 <= args.steps <= 10_000:
+            raise CoatHertzError("--steps: load increments to W must be an integer in [1, 10000], "
+                                 f"got {args.steps}")
         if args.out_json:
             check_output_file(args.out_json, "--out-json")
         if args.vtu_dir:
