@@ -13,7 +13,7 @@ from typing import Any
 
 import numpy as np
 
-from coathertz.case import ContactCase
+from coathertz.case import bars
 
 __all__ = ["FIELD", "QUANTITIES", "RESULT_KEYS", "SYMBOL", "bars", "crosscheck", "crosscheck_summary",
            "group_by_case", "make_errors", "make_rows", "params_of", "uncertainty_by_case"]
@@ -39,18 +39,6 @@ def group_by_case(rows: Iterable[Mapping[str, Any]]) -> dict[str, dict[str, Mapp
 def params_of(row: Mapping[str, Any]) -> dict[str, Any]:
     """The case parameters of a row (everything but the results)."""
     return {k: v for k, v in row.items() if k not in RESULT_KEYS}
-
-
-def bars(case: ContactCase, res: Mapping[str, Any]) -> dict[str, float]:
-    """The paper's bars of a result: ratios to the eq (7) normalisers of the case."""
-    n = case.normalisers
-    return {
-        "a_bar": res["a"] / n.a0,
-        "p_bar": res["p0"] / n.p0,
-        "delta_bar": res["delta"] / n.delta0,
-        "r_a_bar": res["r_a"] / n.r_a0,
-        "r_b_bar": res["r_b"] / n.r_b0,
-    }
 
 
 def make_rows(cases: Sequence[Any], records: Mapping[str, Mapping[str, Mapping]]) -> list[dict]:

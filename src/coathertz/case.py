@@ -11,8 +11,10 @@ Normalisation follows the paper (Section 1.3 and docs/paper-notes.md):
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
 from functools import cached_property
+from typing import Any
 
 from coathertz.errors import CoatHertzError, check_positive
 from coathertz.hertz import (
@@ -285,3 +287,17 @@ class ContactCase:
         R2 = 2.0 * self.R
         return ContactCase(Body(RIGID, None, R2, R2, name="rigid sphere"), Body(b1.material, b1.coating),
                            self.W, label=f"{self.label} (equivalent)" if self.label else "")
+
+
+def bars(case: ContactCase, res: Mapping[str, Any]) -> dict[str, float]:
+    """The paper's bars of a result (``a``, ``p0``, ``delta``, ``r_a``, ``r_b`` in SI): ratios to
+    the eq (7) normalisers of ``case`` (``a0s`` ... on an elastic substrate, ``a0c`` ... on a rigid
+    one)."""
+    n = case.normalisers
+    return {
+        "a_bar": res["a"] / n.a0,
+        "p_bar": res["p0"] / n.p0,
+        "delta_bar": res["delta"] / n.delta0,
+        "r_a_bar": res["r_a"] / n.r_a0,
+        "r_b_bar": res["r_b"] / n.r_b0,
+    }

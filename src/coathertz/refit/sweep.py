@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from coathertz.case import ContactCase
+from coathertz.case import ContactCase, bars
 from coathertz.errors import CoatHertzError
 from coathertz.hertz import hertz_circular
 from coathertz.materials import RIGID, Body, Coating, Material
@@ -140,17 +140,8 @@ def design(config: str, n: int, which: str = "train", seed: int | None = None,
 
 def bars_of(p: Point, case: ContactCase, res: Mapping) -> dict[str, float]:
     """The bars (eq 7 normalisation) of a stored result dict."""
-    n = case.normalisers
-    meta = res.get("meta") or {}
-    r_p0 = meta.get("r_p0")
-    return {
-        "a_bar": res["a"] / n.a0,
-        "delta_bar": res["delta"] / n.delta0,
-        "p_bar": res["p0"] / n.p0,
-        "r_a_bar": res["r_a"] / n.r_a0,
-        "r_b_bar": res["r_b"] / n.r_b0,
-        "r_p0_bar": math.nan if r_p0 is None else float(r_p0) / res["a"],
-    }
+    r_p0 = (res.get("meta") or {}).get("r_p0")
+    return {**bars(case, res), "r_p0_bar": math.nan if r_p0 is None else float(r_p0) / res["a"]}
 
 
 def collect(points: Sequence[Point], method, store, *, workers: int = 1, progress: bool = False,
