@@ -202,3 +202,16 @@ def print_json_or_header(case, res, as_json: bool) -> bool:
         return True
     print(f"case: {case.label or '(unnamed)'}\n  {case.describe()}")
     return False
+
+
+def add_fields_argument(parser: argparse.ArgumentParser, what: str) -> None:
+    """``--save-fields OUT.npz``: the method's arrays (``what`` says which) into one ``.npz``."""
+    parser.add_argument("--save-fields", metavar="OUT.npz", help=f"write {what} to an .npz file")
+
+
+def save_fields(path: str | Path | None, res: ContactResult) -> None:
+    """Write ``res.fields`` to ``path`` (checked by :func:`check_output_file` before solving)."""
+    if path:
+        import numpy as np
+
+        np.savez_compressed(path, **{k: np.asarray(v) for k, v in res.fields.items()})

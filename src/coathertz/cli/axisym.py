@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from coathertz.cli._common import add_case_arguments
+from coathertz.cli._common import add_case_arguments, add_fields_argument
 
 NAME = "axisym"
 HELP = "exact axisymmetric solution of one circular case (delta, a, p0 and its radius, profiles)"
@@ -19,13 +19,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--modes", type=int, default=None, metavar="N",
                         help="Legendre modes of the Galerkin basis (default: automatic from h/a)")
     parser.add_argument("--json", action="store_true", help="machine-readable output")
-    parser.add_argument("--save-fields", metavar="OUT.npz",
-                        help="write r, pressure and u_z (combined surface displacement) profiles")
+    add_fields_argument(parser, "r, pressure and u_z (combined surface displacement) profiles")
 
 
 def run(args: argparse.Namespace) -> int:
-    import numpy as np
-
     from coathertz.axisym import AxisymMethod
     from coathertz.cli._common import (
         case_from_args,
@@ -34,6 +31,7 @@ def run(args: argparse.Namespace) -> int:
         format_table,
         list_examples,
         print_json_or_header,
+        save_fields,
     )
     from coathertz.errors import CoatHertzError
 
@@ -46,8 +44,7 @@ def run(args: argparse.Namespace) -> int:
         raise CoatHertzError(f"--modes: Legendre modes must be an integer in [2, 400], got {args.modes}")
     method = AxisymMethod(interface=args.interface, n_modes=args.modes)
     res = finish(case, method.solve(case))
-    if args.save_fields:
-        np.savez_compressed(args.save_fields, **{k: np.asarray(v) for k, v in res.fields.items()})
+    save_fields(args.save_fields, res)
     if print_json_or_header(case, res, args.json):
         return 0
     norm = case.normalisers

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import math
 
-from coathertz.cli._common import add_case_arguments
+from coathertz.cli._common import add_case_arguments, add_fields_argument
 
 NAME = "fft"
 HELP = "DC-FFT contact solution of one case (delta, a, p0, iterations, residual)"
@@ -23,13 +23,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--spacing-ratio", type=float, default=None,
                         help="dy/dx (default: r_b/r_a; the paper's ellipses use 1/3)")
     parser.add_argument("--json", action="store_true", help="machine-readable output")
-    parser.add_argument("--save-fields", metavar="OUT.npz",
-                        help="write x, y, pressure and displacement arrays to an .npz file")
+    add_fields_argument(parser, "x, y, pressure and displacement arrays")
 
 
 def run(args: argparse.Namespace) -> int:
-    import numpy as np
-
     from coathertz.cli._common import (
         case_from_args,
         check_output_file,
@@ -37,6 +34,7 @@ def run(args: argparse.Namespace) -> int:
         format_table,
         list_examples,
         print_json_or_header,
+        save_fields,
     )
     from coathertz.fft.grid import DEFAULT_N
     from coathertz.fft.method import FFTMethod
@@ -52,8 +50,7 @@ def run(args: argparse.Namespace) -> int:
         spacing_ratio=args.spacing_ratio,
     )
     res = finish(case, method.solve(case))
-    if args.save_fields:
-        np.savez_compressed(args.save_fields, **{k: np.asarray(v) for k, v in res.fields.items()})
+    save_fields(args.save_fields, res)
     if print_json_or_header(case, res, args.json):
         return 0
     norm = case.normalisers
