@@ -37,6 +37,6 @@ def test_cli_plastic_needs_yield_data():
         from argparse import Namespace
 
         from coathertz.casefile import load_case
-        from coathertz.fem.plastic_cli import run_plastic
+        from coathertz.cli._plastic import run_plastic
 
         run_plastic(load_case("example:homogeneous_steel"), Namespace())

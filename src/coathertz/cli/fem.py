@@ -81,7 +81,7 @@ def run(args: argparse.Namespace) -> int:
             check_output_file(args.out_json, "--out-json")
         if args.vtu_dir:
             output_dir(args.vtu_dir, "--vtu-dir")
-        from coathertz.fem.plastic_cli import run_plastic
+        from coathertz.cli._plastic import run_plastic
 
         return run_plastic(case, args)
     method = FEMMethod(mesh=args.mesh, contact=args.contact, solver=args.solver, stresses=True)

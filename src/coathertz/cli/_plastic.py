@@ -1,6 +1,7 @@
 """``coathertz fem CASE --plastic [--unload] [--reload] [--steps N]``: the elastic-plastic load path.
 
-Kept out of :mod:`coathertz.cli.fem` (which only dispatches here) so the CLI module stays small.
+Kept out of :mod:`coathertz.cli.fem` (which only dispatches here) so the CLI module stays small;
+the numerics (:mod:`coathertz.fem.plastic_method`) neither print nor write files.
 """
 
 from __future__ import annotations
@@ -74,5 +75,5 @@ def run_plastic(case: ContactCase, args: argparse.Namespace) -> int:
                       f"{d['max_sigma_1'] / 1e6:.5g} MPa at r = {d['r_max_sigma_1'] * 1e6:.4g} um, "
                       f"max |sigma_rz| {d['max_abs_sigma_rz'] / 1e6:.5g} MPa")
     if "validity" in m:
-        print("warning:", m["validity"])
+        print(f"coathertz fem: warning: {m['validity']}", file=sys.stderr)
     return 0
