@@ -173,6 +173,17 @@ def _dumps(obj: Any) -> str:
     return _json_dumps(obj, sort_keys=True)
 
 
+def _prepare_folder(path: Path) -> None:
+    """Refuse a folder given as the store file; create the store's parent folder."""
+    if path.is_dir():
+        raise StoreError(f"result store {path} is a directory, not a store file")
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise StoreError(f"cannot create the folder of the result store {path}: "
+                         f"{exc.strerror or exc}") from exc
+
+
 class ResultStore:
     """SQLite store of method results (see the module docstring).
 
@@ -188,14 +199,7 @@ class ResultStore:
         self.path = str(path)
         self._lock: _StoreLock | None = None
         if self.path != ":memory:":
-            p = Path(self.path)
-            if p.is_dir():
-                raise StoreError(f"result store {self.path} is a directory, not a store file")
-            try:
-                p.parent.mkdir(parents=True, exist_ok=True)
-            except OSError as exc:
-                raise StoreError(f"cannot create the folder of the result store {self.path}: "
-                                 f"{exc.strerror or exc}") from exc
+            _prepare_folder(Path(self.path))
         self.version = version or code_version()
         try:
             self._db = sqlite3.connect(self.path, timeout=30.0)
@@ -469,13 +473,7 @@ def open_run_store(path: str | Path, *, recover: bool = False, version: str | No
     if str(path) == ":memory:":
         return ResultStore(path, version)
     path = Path(path)
-    if path.is_dir():
-        raise StoreError(f"result store {path} is a directory, not a store file")
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise StoreError(f"cannot create the folder of the result store {path}: "
-                         f"{exc.strerror or exc}") from exc
+    _prepare_folder(path)
     lock = _StoreLock(path)
     lock.acquire()
     try:

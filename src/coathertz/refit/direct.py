@@ -42,16 +42,23 @@ def log_bar(surface: Surface, q: str, E, H, nu_c=0.3, nu_s=0.3) -> np.ndarray:
     return EXPONENT[q] * np.log(E) * w + w * (1.0 - w) * surface(X)
 
 
-def fit(q: str, cols, settings: FitSettings, reweight: int = 4) -> tuple[Surface, dict]:
-    """Fit ``S_q`` to the columns ``E, H, nu_c, nu_s, {q}_bar`` (linear least squares with a few
-    Lawson re-weighting passes towards the minimax fit)."""
+def _design(cols, settings: FitSettings) -> tuple[Surface, np.ndarray, np.ndarray]:
+    """The zero surface over the elastic box, the blend weight ``w(H)`` and the design matrix
+    ``w (1 - w) * basis`` (the correction vanishes in both Hertz limits) of the columns ``cols``."""
     terms = term_set(settings.degrees, settings.cross or None)
     lo = tuple(b[0] for b in M.BOXES["elastic"])
     hi = tuple(b[1] for b in M.BOXES["elastic"])
     proto = Surface(M.VARIABLES["elastic"], lo, hi, terms, tuple(0.0 for _ in terms))
     X = M.variables("elastic", cols["E"], cols["H"], cols["nu_c"], cols["nu_s"])
     w = weight(np.asarray(cols["H"], dtype=float))
-    A = (w * (1 - w))[:, None] * proto.design(X)
+    return proto, w, (w * (1 - w))[:, None] * proto.design(X)
+
+
+def fit(q: str, cols, settings: FitSettings, reweight: int = 4) -> tuple[Surface, dict]:
+    """Fit ``S_q`` to the columns ``E, H, nu_c, nu_s, {q}_bar`` (linear least squares with a few
+    Lawson re-weighting passes towards the minimax fit)."""
+    proto, w, A = _design(cols, settings)
+    terms = proto.terms
     y = np.log(np.asarray(cols[f"{q}_bar"], dtype=float)) - EXPONENT[q] * np.log(cols["E"]) * w
     wt = np.ones(len(y))
     for _ in range(reweight + 1):
@@ -60,7 +67,7 @@ def fit(q: str, cols, settings: FitSettings, reweight: int = 4) -> tuple[Surface
         c = np.linalg.solve(Aw.T @ Aw + settings.ridge * np.eye(len(terms)), Aw.T @ (y * sw))
         r = np.abs(A @ c - y)
         wt = wt * (r / max(r.max(), 1e-300)) + 1e-3
-    surface = Surface(proto.variables, lo, hi, terms, tuple(float(x) for x in c))
+    surface = Surface(proto.variables, proto.lo, proto.hi, terms, tuple(float(x) for x in c))
     return surface, error_stats(100.0 * np.expm1(A @ c - y))
 
 
@@ -68,16 +75,11 @@ def fit_corrected(q: str, cols, base_log_bar: np.ndarray, settings: FitSettings)
     """The corrected one-alpha form: ``ln bar = ln bar_alpha + w(1 - w) C_q(...)``, i.e. the refit
     alpha of eqs (17)-(18) times a smooth factor that vanishes in both Hertz limits. ``C_q`` is fitted
     by linear least squares to the residual ``ln bar_exact - base_log_bar`` of the one-alpha rule."""
-    terms = term_set(settings.degrees, settings.cross or None)
-    lo = tuple(b[0] for b in M.BOXES["elastic"])
-    hi = tuple(b[1] for b in M.BOXES["elastic"])
-    proto = Surface(M.VARIABLES["elastic"], lo, hi, terms, tuple(0.0 for _ in terms))
-    X = M.variables("elastic", cols["E"], cols["H"], cols["nu_c"], cols["nu_s"])
-    w = weight(np.asarray(cols["H"], dtype=float))
-    A = (w * (1 - w))[:, None] * proto.design(X)
+    proto, _w, A = _design(cols, settings)
+    terms = proto.terms
     y = np.log(np.asarray(cols[f"{q}_bar"], dtype=float)) - base_log_bar
     c = np.linalg.solve(A.T @ A + settings.ridge * np.eye(len(terms)), A.T @ y)
-    surface = Surface(proto.variables, lo, hi, terms, tuple(float(x) for x in c))
+    surface = Surface(proto.variables, proto.lo, proto.hi, terms, tuple(float(x) for x in c))
     return surface, error_stats(100.0 * np.expm1(A @ c - y))
 
 
