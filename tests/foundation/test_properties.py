@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 import pytest
-from hypothesis import given, settings
+from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 
 from coathertz import RIGID, Body, Coating, ContactCase, Material
-from coathertz.alpha import Alphas
+from coathertz.alpha import BREAKPOINTS, Alphas
 from coathertz.extended import predict
 
 moduli = st.floats(5e9, 1e12)
@@ -46,8 +46,16 @@ def test_thin_and_thick_limits(Ec, nuc, Es, nus, ind, R, W, al):
 @settings(max_examples=60, deadline=None)
 @given(moduli, poisson, st.floats(0.25, 4.0), poisson, radii, loads, st.floats(0.01, 3.0),
        st.floats(1e-3, 1e3), st.floats(1e-3, 1e3))
+@example(7812500000.0, 0.25, 1.0, 0.0, 0.0859375, 2.0, 0.751, 1.0, 3.0)  # near the H = 0.75 jump
 def test_depends_on_moduli_only_through_ratios(Es, nus, E_ratio, nuc, R, W, H, s_mod, s_load):
-    """Scaling every modulus by s_mod and the load by s_load leaves the bars unchanged at fixed H."""
+    """Scaling every modulus by s_mod and the load by s_load leaves the bars unchanged at fixed H.
+
+    Except exactly at a breakpoint of the paper's piecewise Appendix A alpha curves: they jump
+    there (alpha_p(3) at H = 0.75: 1.9348 -> 1.9367, :func:`coathertz.alpha.breakpoint_jumps`),
+    and the round-off of H = h/a0s after scaling can land on either side (hypothesis found
+    H = 0.75, s_load = 3: p0 bar off by 4.9e-5). Those H are excluded.
+    """
+    assume(all(abs(H / b - 1.0) > 1e-9 for bps in BREAKPOINTS.values() for b in bps))
     sub = Material(Es, nus)
     coat = Material(E_ratio * sub.E_star * (1 - nuc**2), nuc)
 
