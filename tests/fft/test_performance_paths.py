@@ -10,6 +10,7 @@ import pytest
 from coathertz.fft.grid import Grid
 from coathertz.fft.method import FFTMethod, prolong
 from coathertz.fft.solver import SINGLE_THREAD_MAX_N, default_workers
+from coathertz.materials import RIGID
 
 from .conftest import coated
 
@@ -20,7 +21,9 @@ def test_nested_start_same_solution_fewer_transforms(case):
     b = FFTMethod(n=128, workers=1, tol=1e-10).solve(case)
     for q in ("delta", "p0", "a"):
         assert getattr(b, q) == pytest.approx(getattr(a, q), rel=1e-8), q
-    assert b.meta["a_num"] == a.meta["a_num"]  # same contact set
+    # same contact set (one cell more or less would change a_num by ~1e-4; the re-gridded
+    # grid follows the computed contact, so the two grids differ in the last digits)
+    assert b.meta["a_num"] == pytest.approx(a.meta["a_num"], rel=1e-9)
     # at the default tolerance the coarse start saves about a fifth of the transforms
     a = FFTMethod(n=128, nested=False, workers=1).solve(case)
     b = FFTMethod(n=128, workers=1).solve(case)
@@ -57,24 +60,21 @@ def test_default_workers_by_size_and_process():
     assert q.get(timeout=5) == 1  # one thread per worker process in sweeps
 
 
-def test_automatic_preconditioning_where_it_pays():
-    """Half-space-like kernels are preconditioned, a thin layer on a rigid base is not.
-
-    Measured at n = 128 (transform pairs, plain -> preconditioned): E = 4, H = 0.1 66.8 -> 39.8;
-    rigid base, nu_c = 0.5, H = 0.05: 20.4 -> 49.4.
-    """
-    from coathertz.materials import RIGID
-
-    stiff = coated(4.0, 0.1)
-    thin = coated(0.0, 0.05, nu_c=0.5, substrate=RIGID)
-    r_stiff = FFTMethod(n=128, workers=1).solve(stiff)
-    r_thin = FFTMethod(n=128, workers=1).solve(thin)
-    assert r_stiff.meta["preconditioned"] and not r_thin.meta["preconditioned"]
-    for case, auto in ((stiff, r_stiff), (thin, r_thin)):
-        other = FFTMethod(n=128, workers=1, precondition=not auto.meta["preconditioned"])
-        r = other.solve(case)
-        cost = {x.meta["preconditioned"]: x.meta["convolutions_batch"]
-                + x.meta["coarse_pair_equivalents_batch"] for x in (auto, r)}
-        chosen = cost[auto.meta["preconditioned"]]
-        assert chosen < cost[not auto.meta["preconditioned"]], cost
-        assert r.delta == pytest.approx(auto.delta, rel=1e-6) and r.p0 == pytest.approx(auto.p0, rel=2e-5)
+@pytest.mark.parametrize(
+    ("case", "factor"),
+    [(coated(4.0, 0.1), 0.7), (coated(0.0, 0.05, nu_c=0.5, substrate=RIGID), 1.1)],
+    ids=["E4-H0.1", "rigid-base-nu0.5-H0.05"],
+)
+def test_preconditioning_pays_on_half_space_like_and_thin_rigid_base_layers(case, factor):
+    """The kernel-inverse preconditioner (the default) costs far fewer transform pairs than
+    plain CG where the kernel is half-space-like, and about the same on a thin layer on a rigid
+    base (where the former ``|k|`` preconditioner cost up to 5x). Measured at n = 128, pairs
+    with the re-gridding, plain -> preconditioned: E = 4, H = 0.1 71.1 -> 36.1; rigid base,
+    nu_c = 0.5, H = 0.05 34.3 -> 35.3."""
+    auto = FFTMethod(n=128, workers=1).solve(case)
+    plain = FFTMethod(n=128, workers=1, precondition=False).solve(case)
+    assert auto.meta["preconditioned"] and not plain.meta["preconditioned"]
+    cost = {r.meta["preconditioned"]: r.meta["pair_equivalents_total"] for r in (auto, plain)}
+    assert cost[True] < factor * cost[False], cost
+    assert plain.delta == pytest.approx(auto.delta, rel=1e-6)
+    assert plain.p0 == pytest.approx(auto.p0, rel=2e-5)
