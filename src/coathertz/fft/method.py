@@ -235,49 +235,72 @@ class FFTMethod:
             if not self.supports(c):
                 raise CoatHertzError("FFT method needs a point contact (finite Rx and Ry)")
         grids = [grid or self.grid_for(c) for c in cases]
+        adaptive = self.adapt and grid is None
         groups: dict[tuple, list[int]] = {}
         for i, g in enumerate(grids):
             groups.setdefault(g.key(), []).append(i)
         out: list[ContactResult | None] = [None] * len(cases)
         for idx in groups.values():
-            p_prev = None
+            prev: tuple[ContactResult, Grid] | None = None
             for s in range(0, len(idx), batch):
                 chunk = idx[s : s + batch]
-                res = self._solve_batch([cases[i] for i in chunk], grids[chunk[0]], p_prev)
+                g = grids[chunk[0]]
+                p_start = None
+                if prev is not None:
+                    # warm start from the previous case; with ``adapt``, on the grid its contact
+                    # asked for (a sweep along H changes the contact little from case to case)
+                    r_prev, g_prev = prev
+                    if adaptive:
+                        g = self._refit(r_prev.meta["extent"], (r_prev.r_a, r_prev.r_b), g) or g
+                    p_start = r_prev.fields["pressure"]
+                    if g != g_prev:
+                        p_start = prolong_pressure(p_start, g_prev, g)
+                res = self._solve_batch(
+                    [cases[i] for i in chunk], g, p_start, probe=adaptive and batch == 1
+                )
+                if adaptive:
+                    res = [self._adapt(cases[i], r) for i, r in zip(chunk, res, strict=True)]
                 if warm_start and batch == 1:
-                    p_prev = res[0].fields["pressure"]
+                    prev = (res[0], Grid(**res[0].meta["grid"]))
                 for i, r in zip(chunk, res, strict=True):
                     out[i] = r if self.keep_fields else dataclasses.replace(r, fields={})
-        if self.adapt and grid is None:
-            for i, r in enumerate(out):
-                g = grids[i]
-                spent = 0.0
-                for _ in range(4):
-                    new = self._refit(r, g)
-                    if new is None:
-                        break
-                    spent += r.meta["pair_equivalents"]
-                    g = new
-                    r = self._solve_batch([cases[i]], g)[0]
-                r.meta["pair_equivalents_total"] += spent
-                r.meta["regridded"] = spent > 0
-                out[i] = r if self.keep_fields else dataclasses.replace(r, fields={})
         return out  # type: ignore[return-value]
 
+    def _adapt(self, case: ContactCase, r: ContactResult) -> ContactResult:
+        """Re-solve on the grid the computed contact asks for (at most 4 times), see
+        :mod:`coathertz.fft.grid`; the pairs spent on grids given up are counted in meta."""
+        g = Grid(**r.meta["grid"])
+        spent = 0.0
+        for _ in range(4):
+            new = self._refit(r.meta["extent"], (r.r_a, r.r_b), g)
+            if new is None:
+                break
+            spent += r.meta["pair_equivalents_total"]
+            g = new
+            r = self._solve_batch([case], g)[0]
+        if spent > 0:
+            r.meta["pair_equivalents_total"] += spent
+            r.meta["regridded"] = True
+        return r
+
     # internals ------------------------------------------------------------------------
-    def _refit(self, r: ContactResult, g: Grid) -> Grid | None:
-        ext_x, ext_y = r.meta["extent"]
+    def _refit(
+        self, extent: Sequence[float], axes: tuple[float, float], g: Grid
+    ) -> Grid | None:
+        """The grid for a contact of ``extent`` (half-widths of its cells) and semi-axes
+        ``axes`` found on ``g``, or ``None`` when ``g`` suits it (see :mod:`coathertz.fft.grid`)."""
+        ext_x, ext_y = extent
         hx, hy = g.half_widths
         touching = ext_x > hx - 2 * g.dx or ext_y > hy - 2 * g.dy
         small = max(ext_x / hx, ext_y / hy) < REFIT_BELOW / self.margin
         if not (touching or small):
             return None
         if touching:
-            ra, rb = 1.5 * max(r.r_a, ext_x), 1.5 * max(r.r_b, ext_y)
+            ra, rb = 1.5 * max(axes[0], ext_x), 1.5 * max(axes[1], ext_y)
         else:  # on the computed contact, leaving at least 3 cells outside its extent
             room = self.margin * (1.0 - 3.0 / (self.n / 2 - 0.5))
-            ra = max(r.r_a, ext_x / room)
-            rb = max(r.r_b, ext_y / room)
+            ra = max(axes[0], ext_x / room)
+            rb = max(axes[1], ext_y / room)
         ratio = self.spacing_ratio if self.spacing_ratio is not None else g.dy / g.dx
         return grid_for_axes(ra, rb, self.n, self.margin, ratio)
 
@@ -309,10 +332,34 @@ class FFTMethod:
         return [prolong_pressure(sol.p[k], coarse, grid) for k in range(len(cases))], cost
 
     def _solve_batch(
-        self, cases: list[ContactCase], grid: Grid, p_prev: np.ndarray | None = None
+        self,
+        cases: list[ContactCase],
+        grid: Grid,
+        p_prev: np.ndarray | None = None,
+        probe: bool = False,
     ) -> list[ContactResult]:
+        """Solve ``cases`` on ``grid``, from ``p_prev`` or the nested coarse start.
+
+        ``probe`` (one case): when the coarse start's contact asks for another grid
+        (:meth:`_refit`), move there before the fine solve, so that the re-gridding costs a
+        coarse solve rather than a fine one; the coarse cost is counted in
+        ``meta["pair_equivalents_total"]``.
+        """
         t0 = time.perf_counter()
         be = get_backend(self.backend, self.fft_workers())
+        probe_cost, moved = 0.0, False
+        nested = p_prev is None and self.nested and min(grid.nx, grid.ny) >= NESTED_MIN_N
+        probe = probe and nested and len(cases) == 1
+        if probe:
+            p_c, cost = self._coarse_start(cases, grid, be)
+            m = p_c[0] > 0
+            if np.any(m):
+                X, Y = np.meshgrid(grid.x, grid.y)
+                ext = (float(np.max(np.abs(X[m]))) + grid.dx / 2,
+                       float(np.max(np.abs(Y[m]))) + grid.dy / 2)
+                new = self._refit(ext, estimators.moment_axes(p_c[0], grid), grid)
+                if new is not None:
+                    probe_cost, moved, grid = cost, True, new
         kern = np.stack([case_coefficients(c, grid, self.interface) for c in cases])
         g0 = np.stack([initial_gap(c, grid) for c in cases])
         W = np.array([c.W for c in cases])
@@ -325,7 +372,9 @@ class FFTMethod:
             else:
                 p_init.append(pressure_elliptical(X, Y, INIT_SCALE * ra, INIT_SCALE * rb, 1.0))
         nested_conv = 0.0
-        if p_prev is None and self.nested and min(grid.nx, grid.ny) >= NESTED_MIN_N:
+        if probe and not moved:
+            p_init, nested_conv = p_c, cost  # the probe was the coarse start on this grid
+        elif nested:
             p_init, nested_conv = self._coarse_start(cases, grid, be)
         t1 = time.perf_counter()
         conv = Convolver(kern, be)
@@ -373,8 +422,9 @@ class FFTMethod:
                 # transform pairs of this solve per case (coarse levels weighted by their size)
                 # and with the solves on grids given up by the re-gridding (``adapt``)
                 "pair_equivalents": (sol.convolutions + nested_conv) / len(cases),
-                "pair_equivalents_total": (sol.convolutions + nested_conv) / len(cases),
-                "regridded": False,
+                "pair_equivalents_total": (sol.convolutions + nested_conv) / len(cases)
+                + probe_cost,
+                "regridded": moved,
                 "preconditioned": bool(pre),
                 "batch": len(cases),
                 "wall_time": per_case,
