@@ -34,8 +34,8 @@ def test_nested_start_same_solution_fewer_transforms(case):
 
 def test_regridding_on_the_coarse_contact_gives_the_solution_on_that_grid():
     """E = 3, H = 0.3: the contact (a = 0.86 of the Hertz estimate) asks for a finer grid; the
-    coarse start finds it (``probe``), so the fine solve runs once, on the grid that the solve
-    on the estimate grid would have re-gridded to (up to the coarse contact's resolution)."""
+    coarse start finds it (``probe``) and the fine solve runs once, on that grid, from the
+    probe's pressure; the answer is the solution on that grid (to the CG tolerance)."""
     case = coated(3.0, 0.3)
     r = FFTMethod(n=128, workers=1).solve(case)
     assert r.meta["regridded"]
@@ -43,11 +43,12 @@ def test_regridding_on_the_coarse_contact_gives_the_solution_on_that_grid():
     assert r.meta["grid"]["dx"] < 0.9 * est.dx
     cells = r.a / r.meta["grid"]["dx"]
     assert 0.9 * 128 / 2.5 < cells < 1.05 * 128 / 2.5, cells  # nominal n / (2 margin)
-    # the fine solve ran once: the total holds one coarse start more than the fine solve
+    # the fine solve ran once: the total adds the coarse probe on the estimate grid only
     extra = r.meta["pair_equivalents_total"] - r.meta["pair_equivalents"]
-    assert 0 < extra < 0.5 * r.meta["pair_equivalents"], r.meta
-    fixed = FFTMethod(n=128, workers=1).solve(case, grid=Grid(**r.meta["grid"]))
-    assert fixed.delta == r.delta and fixed.p0 == r.p0 and fixed.a == r.a
+    assert 0 < extra < 0.3 * r.meta["pair_equivalents"], r.meta
+    fixed = FFTMethod(n=128, workers=1, tol=1e-10).solve(case, grid=Grid(**r.meta["grid"]))
+    assert r.delta == pytest.approx(fixed.delta, rel=1e-7)
+    assert r.p0 == pytest.approx(fixed.p0, rel=2e-5) and r.a == pytest.approx(fixed.a, rel=1e-5)
 
 
 def test_prolong_is_exact_for_linear_fields():

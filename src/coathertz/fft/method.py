@@ -35,7 +35,15 @@ from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError
 from coathertz.fft import estimators
 from coathertz.fft.frf import INTERFACES
-from coathertz.fft.grid import DEFAULT_MARGIN, DEFAULT_N, REFIT_BELOW, Grid, check_n, grid_for_axes
+from coathertz.fft.grid import (
+    DEFAULT_MARGIN,
+    DEFAULT_N,
+    REFIT_BELOW,
+    RESOLVE_BELOW,
+    Grid,
+    check_n,
+    grid_for_axes,
+)
 from coathertz.fft.influence import body_coefficients, circulant
 from coathertz.fft.solver import (
     Convolver,
@@ -120,14 +128,18 @@ class FFTMethod:
         discretisation error.
     precondition
         CG direction preconditioned by the inverse of the kernel
-        (:func:`~coathertz.fft.solver.polonsky_keer`; default ``True``): fewer transform pairs
-        on every case of the paper's families, iterations flat in ``n``.
+        (:func:`~coathertz.fft.solver.polonsky_keer`; default ``True``): iterations flat in
+        ``n``; half the transform pairs of plain CG on half-space-like kernels, about as many
+        on thin layers over a rigid base.
     nested
         Start a solve without a warm start from the solution on the grid with cells twice
         as large (``n >= 64``): about 20 % fewer transform-pair equivalents in all.
     adapt
         Re-grid on the computed contact when it fills less than ``REFIT_BELOW`` of the
-        estimate or touches the margin (see :mod:`coathertz.fft.grid`).
+        estimate or touches the margin (see :mod:`coathertz.fft.grid`), so that the radius
+        gets the nominal ``n / (2 margin)`` cells. The contact of the nested start's coarse
+        solve decides it before the fine solve (or, in a sweep with warm starts, the previous
+        case's contact); the fine solve is repeated only when the fine contact disagrees.
     radius
         Estimator reported as ``a``: ``edge-fit`` (default, sub-cell) or ``area`` (the paper's
         ``sqrt(S/pi)``, ``meta["a_num"]``); both are always in ``meta``. The edge fit is the
@@ -272,7 +284,7 @@ class FFTMethod:
         g = Grid(**r.meta["grid"])
         spent = 0.0
         for _ in range(4):
-            new = self._refit(r.meta["extent"], (r.r_a, r.r_b), g)
+            new = self._refit(r.meta["extent"], (r.r_a, r.r_b), g, RESOLVE_BELOW)
             if new is None:
                 break
             spent += r.meta["pair_equivalents_total"]
@@ -285,14 +297,20 @@ class FFTMethod:
 
     # internals ------------------------------------------------------------------------
     def _refit(
-        self, extent: Sequence[float], axes: tuple[float, float], g: Grid
+        self,
+        extent: Sequence[float],
+        axes: tuple[float, float],
+        g: Grid,
+        below: float = REFIT_BELOW,
     ) -> Grid | None:
         """The grid for a contact of ``extent`` (half-widths of its cells) and semi-axes
-        ``axes`` found on ``g``, or ``None`` when ``g`` suits it (see :mod:`coathertz.fft.grid`)."""
+        ``axes`` found on ``g``, or ``None`` when ``g`` suits it: the contact neither comes
+        within two cells of the boundary nor fills less than ``below`` of the estimate (see
+        :mod:`coathertz.fft.grid`)."""
         ext_x, ext_y = extent
         hx, hy = g.half_widths
         touching = ext_x > hx - 2 * g.dx or ext_y > hy - 2 * g.dy
-        small = max(ext_x / hx, ext_y / hy) < REFIT_BELOW / self.margin
+        small = max(ext_x / hx, ext_y / hy) < below / self.margin
         if not (touching or small):
             return None
         if touching:
@@ -358,7 +376,8 @@ class FFTMethod:
                 ext = (float(np.max(np.abs(X[m]))) + grid.dx / 2,
                        float(np.max(np.abs(Y[m]))) + grid.dy / 2)
                 new = self._refit(ext, estimators.moment_axes(p_c[0], grid), grid)
-                if new is not None:
+                if new is not None:  # start from the probe, interpolated to the new grid
+                    p_c = [prolong_pressure(p_c[0], grid, new)]
                     probe_cost, moved, grid = cost, True, new
         kern = np.stack([case_coefficients(c, grid, self.interface) for c in cases])
         g0 = np.stack([initial_gap(c, grid) for c in cases])
@@ -372,8 +391,8 @@ class FFTMethod:
             else:
                 p_init.append(pressure_elliptical(X, Y, INIT_SCALE * ra, INIT_SCALE * rb, 1.0))
         nested_conv = 0.0
-        if probe and not moved:
-            p_init, nested_conv = p_c, cost  # the probe was the coarse start on this grid
+        if probe:  # the probe was the coarse start (on this grid, or moved to it)
+            p_init, nested_conv = p_c, (0.0 if moved else cost)
         elif nested:
             p_init, nested_conv = self._coarse_start(cases, grid, be)
         t1 = time.perf_counter()
