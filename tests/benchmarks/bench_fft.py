@@ -161,7 +161,8 @@ def main() -> None:
         for label, E, H in CASES:
             case = case_for(E, H)
             pair, t, ratio, r = time_solve(case, m, n, workers, repeat)
-            conv = r.meta["convolutions_batch"] + r.meta.get("coarse_pair_equivalents_batch", 0)
+            conv = r.meta.get("pair_equivalents_total", r.meta["convolutions_batch"]
+                              + r.meta.get("coarse_pair_equivalents_batch", 0))
             print(f"n = {n:4d} {label:12s}: pair {pair * 1e3:7.3f} ms, solve {t * 1e3:8.1f} ms, "
                   f"ratio {ratio:6.1f} pairs; {r.meta['iterations']:3d} iterations, "
                   f"{conv:5.1f} transform pairs counted (workers {workers})")

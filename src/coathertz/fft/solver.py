@@ -23,13 +23,16 @@ Efficiency
   (clipping negative pressures, re-activating overlapping points) change at most
   :data:`MAX_DIRECT_CELLS` cells, their response is added directly from the kernel; more
   changes, and every ``REFRESH`` iterations, take a fresh ``K p``;
-* the ``|k|`` preconditioner (:meth:`Convolver.precondition`) costs a second transform pair
-  per iteration; :func:`prefer_precondition` applies it where the kernel is half-space-like
-  (iterations then stay flat in n: 9-18 at n = 128-512), not on thin layers over a rigid
-  base (already well conditioned, 6-28 iterations without). With the nested start of
-  :class:`~coathertz.fft.method.FFTMethod`, the transform pairs per solve (coarse pairs
-  counted a quarter) are 12-48 at n = 128, 18-47 at 256, 27-48 at 512 over 30 cases (the
-  previous path: 45-97 for the benchmark cases, growing with n);
+* the CG direction is preconditioned by the inverse of the kernel's transform
+  (:meth:`Convolver.precondition`, one more transform pair per iteration): the exact inverse
+  of the operator on the padded grid, so that CG is left with the restriction to the contact
+  set and its changes. Iterations stay flat in n and in the layer: 6-15 over 30 cases of the
+  paper's families at n = 128-512 (a ``|k|`` preconditioner, the inverse for a half-space
+  only, cost up to 5x on thin layers over a rigid base; plain CG needed 9-38 there, growing
+  with n). With the nested start of :class:`~coathertz.fft.method.FFTMethod`, the transform
+  pairs per solve (coarse pairs weighted by their size, re-gridding included) over the 30
+  cases are 18-37 (median 23) at n = 128, 19-41 (24) at 256 and 22-42 (25) at 512
+  (``tests/benchmarks/bench_fft.py --family``; the previous path: 15-48, 18-47, 19-53);
 * the array namespace is chosen at run time (``backend="numpy"`` or ``"cupy"``), so the same
   code runs on a GPU with CuPy.
 
@@ -283,9 +286,11 @@ def polonsky_keer(
         (:meth:`Convolver.precondition`): the exact inverse of the operator on the whole
         padded grid, so that only the restriction to the contact set and the changes of that
         set are left to CG. Each iteration costs one more transform pair; the iterations
-        stay flat in ``n`` and in the layer (5-18 at n = 128-512 over 30 cases of the paper's
+        stay flat in ``n`` and in the layer (6-15 at n = 128-512 over 30 cases of the paper's
         families, against 9-38 without, growing with ``n``), and at equal ``tol`` the
-        solution is closer to the converged one.
+        solution is closer to the converged one (four coated cases at n = 128, ``tol`` 1e-6:
+        within 1.3e-9 in delta and 1.4e-8 in p0 of the solution at 1e-12; without: 1.1e-8
+        and 8.9e-7).
     callback
         Called with the iteration number at the start of each iteration (diagnostics; the
         allocation test uses it).
