@@ -140,7 +140,7 @@ def test_kernel_inverse_preconditioner():
     g = FFTMethod(n=32).grid_for(case)
     conv = Convolver(case_coefficients(case, g), get_backend())
     assert np.all(conv.khat.real > 1e-3 * conv.khat.real.max())  # positive definite
-    prod = conv.mhat * conv.khat.real
+    prod = conv.mhat.real * conv.khat.real
     assert np.allclose(prod, prod.flat[0], rtol=1e-12)
     with pytest.raises(CoatHertzError, match="precondition"):
         FFTMethod(precondition=None)

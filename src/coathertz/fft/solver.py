@@ -151,9 +151,11 @@ class Convolver:
         self.khat = backend.rfft2(kc, s=self.shape2)
         # the preconditioner: the inverse of the kernel's transform (real and positive for the
         # even, positive-definite kernels of elastic bodies), floored against round-off
+        # (stored complex like ``khat``: a real factor would make the in-place product cast
+        # through numpy's ufunc buffer, an allocation of 128 KiB per call)
         kh = self.khat.real
         top = kh.max(axis=(-2, -1), keepdims=True)
-        self.mhat = top / backend.xp.maximum(kh, PRECONDITION_FLOOR * top)
+        self.mhat = (top / backend.xp.maximum(kh, PRECONDITION_FLOOR * top)).astype(complex)
         self._kc = kc
         self._G = None
         self._buffers: dict = {}
