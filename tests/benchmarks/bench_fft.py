@@ -13,10 +13,19 @@ right before each solve, on a machine that may be shared):
    with ``FFTMethod.solve_many`` (one grid per modulus ratio, warm start along H);
    ``--ratios k`` takes every k-th modulus ratio (same per-case mix of H) and scales to 2525.
 
-``--save FILE`` writes delta, a, a_num, p0 of the benchmark cases (JSON); ``--compare FILE``
-prints their relative differences against a saved run (before/after a solver change).
+3. ``--family``: the transform pairs counted per solve (with the solves on grids given up by
+   the re-gridding, ``meta["pair_equivalents_total"]``; older versions without that key: the
+   final solve's count) over 30 cases of the paper's circular families (the 24 of
+   ``tests/fft/test_radius.py``, homogeneous, and five more) at the ``--ns`` grids, with
+   min / median / max per grid (issue 13: <= 40 at 128, <= 60 at 512, flat in n). Counts, not
+   timings: independent of the machine's load.
 
-Usage: ``python tests/benchmarks/bench_fft.py [--ns 128 256 512] [--ratios 5] [--workers W]``.
+``--save FILE`` writes delta, a, a_num, p0 of the benchmark cases (JSON; with ``--family`` also
+of the family cases); ``--compare FILE`` prints their relative differences against a saved run
+(before/after a solver change).
+
+Usage: ``python tests/benchmarks/bench_fft.py [--ns 128 256 512] [--ratios 5] [--workers W]
+[--family]``.
 """
 
 from __future__ import annotations
@@ -38,6 +47,49 @@ from coathertz.materials import Material
 NU = 0.3
 ES = Material(200e9, NU)
 CASES = (("homogeneous", 1.0, 1.0), ("E=3, H=0.3", 3.0, 0.3), ("E=1/3, H=1", 1 / 3, 1.0))
+
+
+def family_cases() -> dict[str, tuple[ContactCase, str]]:
+    """30 circular cases of the paper's families: name -> (case, interface)."""
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+    from fft.conftest import STEEL, coated
+    from fft.test_radius import A_EXACT, _case
+
+    from coathertz.materials import RIGID, Body
+
+    cases = {name: _case(name) for name in A_EXACT}
+    cases["homogeneous"] = (ContactCase(Body.rigid_sphere(10e-3), Body.half_space(STEEL), 1.0),
+                            "bonded")
+    cases["el_E3_H0.3"] = (coated(3.0, 0.3), "bonded")
+    cases["el_E1/3_H1"] = (coated(1 / 3, 1.0), "bonded")
+    cases["el_E2_H0.05"] = (coated(2.0, 0.05), "bonded")
+    cases["rg_nu0.5_H0.01"] = (coated(0.0, 0.01, nu_c=0.5, substrate=RIGID), "bonded")
+    cases["fl_el_E4_H0.3"] = (coated(4.0, 0.3), "frictionless")
+    return cases
+
+
+def family_pairs(ns: list[int], kw: dict, saved: dict) -> None:
+    """Print the transform pairs per solve over :func:`family_cases` (see module docstring)."""
+    counts: dict[int, list[float]] = {n: [] for n in ns}
+    for name, (case, interface) in family_cases().items():
+        row = []
+        for n in ns:
+            r = FFTMethod(n=n, interface=interface, keep_fields=False, **kw).solve(case)
+            m = r.meta
+            pairs = m.get("pair_equivalents_total",
+                          m["convolutions_batch"] + m.get("coarse_pair_equivalents_batch", 0))
+            counts[n].append(pairs)
+            row.append(f"n = {n}: {pairs:5.1f} ({m['iterations']:2d} it)")
+            saved[f"family {n} {name}"] = {"delta": r.delta, "a": r.a, "a_num": m["a_num"],
+                                            "p0": r.p0}
+        print(f"{name:18s} " + "  ".join(row), flush=True)
+    for n in ns:
+        v = np.array(counts[n])
+        print(f"family, n = {n}: transform pairs per solve min {v.min():.1f}, "
+              f"median {np.median(v):.1f}, max {v.max():.1f} over {v.size} cases")
 
 
 def fig3_ratios() -> list[float]:
@@ -91,6 +143,8 @@ def main() -> None:
                     help="FFT threads (default: the method's default)")
     ap.add_argument("--ratios", type=int, default=5,
                     help="fig-3 sweep: every k-th modulus ratio (1: all 2525 cases; 0: skip)")
+    ap.add_argument("--family", action="store_true",
+                    help="transform pairs per solve over 30 family cases at the --ns grids")
     ap.add_argument("--save", default=None)
     ap.add_argument("--compare", default=None)
     args = ap.parse_args()
@@ -107,12 +161,15 @@ def main() -> None:
         for label, E, H in CASES:
             case = case_for(E, H)
             pair, t, ratio, r = time_solve(case, m, n, workers, repeat)
-            conv = r.meta["convolutions_batch"] + r.meta.get("coarse_pair_equivalents_batch", 0)
+            conv = r.meta.get("pair_equivalents_total", r.meta["convolutions_batch"]
+                              + r.meta.get("coarse_pair_equivalents_batch", 0))
             print(f"n = {n:4d} {label:12s}: pair {pair * 1e3:7.3f} ms, solve {t * 1e3:8.1f} ms, "
                   f"ratio {ratio:6.1f} pairs; {r.meta['iterations']:3d} iterations, "
                   f"{conv:5.1f} transform pairs counted (workers {workers})")
             saved[f"{n} {label}"] = {"delta": r.delta, "a": r.a, "a_num": r.meta["a_num"],
                                      "p0": r.p0}
+    if args.family:
+        family_pairs(args.ns, kw, saved)
     if args.save:
         with open(args.save, "w") as f:
             json.dump(saved, f, indent=1)

@@ -12,6 +12,7 @@ from coathertz.errors import CoatHertzError, ConvergenceError
 from coathertz.fft.grid import Grid, grid_for_axes
 from coathertz.fft.method import FFTMethod
 from coathertz.fft.solver import get_backend
+from coathertz.materials import RIGID
 from coathertz.methods import Method, get_method
 
 from .conftest import coated
@@ -114,16 +115,32 @@ def test_solve_many_without_fields():
     assert res[0].meta["grid"] == res[1].meta["grid"]  # one grid per material pair
 
 
-def test_preconditioned_cg_agrees_and_needs_spacing():
-    from coathertz.fft.method import case_coefficients, initial_gap
-    from coathertz.fft.solver import Convolver, polonsky_keer
+@pytest.mark.parametrize(
+    "case",
+    [coated(3.0, 0.3), coated(0.0, 0.05, nu_c=0.5, substrate=RIGID)],
+    ids=["E3-H0.3", "rigid-base-nu0.5-H0.05"],
+)
+def test_preconditioned_cg_agrees_and_needs_fewer_iterations(case):
+    """The kernel-inverse preconditioner changes the path, not the solution, and pays also on a
+    thin incompressible layer on a rigid base (where the former ``|k|`` preconditioner cost up
+    to 5x): measured at n = 64, tol 1e-10, 63 -> 22 and 17 -> 11 iterations."""
+    a = FFTMethod(n=64, precondition=False, tol=1e-10).solve(case)
+    b = FFTMethod(n=64, precondition=True, tol=1e-10).solve(case)
+    for q in ("delta", "p0", "a"):
+        assert getattr(b, q) == pytest.approx(getattr(a, q), rel=1e-8), q
+    assert b.meta["iterations"] < a.meta["iterations"], (a.meta["iterations"], b.meta["iterations"])
+
+
+def test_kernel_inverse_preconditioner():
+    """``precondition`` undoes the convolution on the padded grid (the operator CG sees)."""
+    from coathertz.fft.method import case_coefficients
+    from coathertz.fft.solver import Convolver
 
     case = coated(3.0, 0.3)
-    a = FFTMethod(n=64, precondition=False).solve(case)
-    b = FFTMethod(n=64, precondition=True).solve(case)
-    assert b.delta == pytest.approx(a.delta, rel=1e-6) and b.p0 == pytest.approx(a.p0, rel=1e-5)
-    assert b.meta["iterations"] < a.meta["iterations"]
     g = FFTMethod(n=32).grid_for(case)
     conv = Convolver(case_coefficients(case, g), get_backend())
-    with pytest.raises(CoatHertzError, match="spacing"):
-        polonsky_keer(conv, initial_gap(case, g), 1.0, g.cell_area, precondition=True)
+    assert np.all(conv.khat.real > 1e-3 * conv.khat.real.max())  # positive definite
+    prod = conv.mhat.real * conv.khat.real
+    assert np.allclose(prod, prod.flat[0], rtol=1e-12)
+    with pytest.raises(CoatHertzError, match="precondition"):
+        FFTMethod(precondition=None)

@@ -5,10 +5,14 @@ References: ``a`` of the exact axisymmetric method (``coathertz.axisym.AxisymMet
 modes-constants agree to < 1e-10; homogeneous: Hertz to 1e-15). They are copied here as
 numbers so that the FFT tests do not import another method's solver.
 
-The FFT reports the sub-cell gap fit (:func:`coathertz.fft.estimators.gap_fit_axes`). Measured
-max |error| over the 24 coated cases below: 0.43 % (n = 64), 0.13 % (128), 0.035 % (256),
-0.012 % (512); the paper's ``a_num = sqrt(S/pi)``: 1.37, 0.61, 0.29, 0.12 %; the previous
-wide-band ``p^2`` fit (with its ``a_num`` fallback): 1.37, 0.80, 0.74, 0.76 %.
+The FFT reports the sub-cell gap fit (:func:`coathertz.fft.estimators.gap_fit_axes`) on a grid
+re-fitted to the computed contact (``REFIT_BELOW = 0.9``, :mod:`coathertz.fft.grid`). Measured
+max |error| over the 24 coated cases below: 0.36 % (n = 64), 0.128 % (128), 0.024 % (256);
+without E = 4, H = 0.01 (h is half a cell at n = 128): 0.14 %, 0.051 %, 0.018 %. Before the
+re-fit to the contact (grids on the Hertz estimate, radii of 26-51 cells at n = 128): 0.43 %,
+0.131 %, 0.035 %, 0.012 % (n = 512); the paper's ``a_num = sqrt(S/pi)``: 1.37, 0.61, 0.29,
+0.12 %; the earlier wide-band ``p^2`` fit (with its ``a_num`` fallback): 1.37, 0.80, 0.74,
+0.76 %.
 """
 
 from __future__ import annotations
@@ -72,15 +76,18 @@ def _error(name: str, n: int) -> float:
 
 
 #: one case per family, including the previous estimator's worst (rigid base, nu_c = 0.5,
-#: H = 0.2: +0.80 %) and its area fallback (rigid base, H = 0.05: +0.23 %, +0.61 %)
+#: H = 0.2: +0.80 %) and its area fallback (rigid base, H = 0.05: +0.23 %, +0.61 %), and the two
+#: cases over 0.1 % before the re-fit to the contact (E = 1/4, H = 0.01: -0.131 % -> -0.028 %;
+#: rigid base, nu_c = 0.4, H = 0.1: -0.103 % -> -0.031 %)
 WITHIN_GOAL = ["el_E0.25_H0.5", "el_E4_H0.1", "el_E4_H3", "rg_nu0.5_H0.2", "rg_nu0.3_H0.05",
-               "rg_nu0.3_H3", "fl_rg_nu0.5_H0.2", "fl_el_E0.25_H0.3", "fl_rg_nu0.3_H0.05"]
+               "rg_nu0.3_H3", "fl_rg_nu0.5_H0.2", "fl_el_E0.25_H0.3", "fl_rg_nu0.3_H0.05",
+               "el_E0.25_H0.01", "rg_nu0.4_H0.1"]
 
 
 @pytest.mark.parametrize("name", WITHIN_GOAL)
 def test_radius_within_0p1_percent_at_n128(name):
     err = _error(name, 128)
-    assert abs(err) < 1e-3, f"{name}: a error {err:+.2e} at n = 128 (measured <= 8.4e-4)"
+    assert abs(err) < 1e-3, f"{name}: a error {err:+.2e} at n = 128 (measured <= 5.1e-4)"
 
 
 def test_radius_converges_at_second_order_on_a_sub_cell_coating():
@@ -93,14 +100,24 @@ def test_radius_converges_at_second_order_on_a_sub_cell_coating():
     assert errs[1] < 1.5e-3 and errs[2] < 3e-4, msg
 
 
+#: h is half a cell at n = 128: the one case over the 0.1 % goal (+0.128 %, see the report)
+SUB_CELL_STIFF = "el_E4_H0.01"
+
+
 @pytest.mark.slow
 def test_radius_all_families_slow():
-    """All 24 cases at n = 128 and 256: max |error| 0.131 % and 0.035 % (measured)."""
-    worst = {}
-    for n, bound in ((128, 1.5e-3), (256, 4e-4)):
-        errs = {name: _error(name, n) for name in A_EXACT}
-        worst[n] = max(errs.items(), key=lambda kv: abs(kv[1]))
-        assert abs(worst[n][1]) < bound, f"n = {n}: worst {worst[n]}; all {errs}"
+    """All 24 cases at n = 64, 128, 256 (measured max |error| 0.36 %, 0.128 %, 0.024 %; at
+    n = 128 0.051 % without E = 4, H = 0.01); the family maximum falls at order >= 1.5."""
+    ns = (64, 128, 256)
+    errs = {n: {name: _error(name, n) for name in A_EXACT} for n in ns}
+    worst = [max(abs(e) for e in errs[n].values()) for n in ns]
+    order = -np.polyfit(np.log(ns), np.log(worst), 1)[0]
+    msg = f"max |error| {worst} on n = {ns}, observed order {order:.2f}; all {errs}"
+    assert order >= 1.5, msg  # measured 1.97
+    others = max(abs(e) for name, e in errs[128].items() if name != SUB_CELL_STIFF)
+    assert others < 1e-3, msg  # the goal: measured 5.1e-4
+    assert abs(errs[128][SUB_CELL_STIFF]) < 1.5e-3, msg  # measured 1.28e-3
+    assert worst[2] < 3.5e-4, msg  # measured 2.4e-4
 
 
 @pytest.mark.slow
@@ -124,9 +141,3 @@ def test_area_estimator_is_kept():
     r = FFTMethod(n=64, radius="area", workers=1).solve(case)
     assert r.meta["radius_estimator"] == "area" and r.a == pytest.approx(r.meta["a_num"])
     assert r.meta["a_fit"] != r.a
-
-
-def test_sub_cell_soft_coating_within_0p15_percent():
-    """E = 1/4, H = 0.01 (h is half a cell at n = 128): -0.131 % measured, over the 0.1 % goal."""
-    err = _error("el_E0.25_H0.01", 128)
-    assert abs(err) < 1.5e-3, f"{err:+.2e} (measured -1.31e-3)"

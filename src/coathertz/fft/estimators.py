@@ -17,10 +17,15 @@
   collocation error of the edge, so a fit of ``p^2`` inside over a few cells scatters more.
   Measured against the exact axisymmetric solution over the paper's circular families
   (elastic substrate E = 1/4, 4 and H = 0.01-3, rigid substrate nu_c = 0.3-0.5 and
-  H = 0.05-3, bonded and frictionless; 24 coated cases): max |error| 0.43 % at n = 64,
-  0.13 % at 128, 0.035 % at 256, 0.012 % at 512, observed order about 2. The three cases
-  above 0.1 % at n = 128 have ``h`` of half a cell (H = 0.01) or a rigid base with
-  nu_c = 0.4, H = 0.1 (0.103 %). Ellipses: a fit in a sector around each axis (the gap's
+  H = 0.05-3, bonded and frictionless; 24 coated cases), on grids re-fitted to the contact
+  (:mod:`coathertz.fft.grid`): max |error| 0.36 % at n = 64, 0.128 % at 128, 0.024 % at
+  256, observed order about 2. The one case above 0.1 % at n = 128 is a stiff coating half
+  a cell thick (E = 4, H = 0.01: +0.128 %; frictionless +0.137 %; E = 2: +0.089 %); the
+  others are within 0.051 %. There the gap just outside the edge is that of the substrate
+  with the layer's boundary layer (width ~h) inside one cell, and the fit on the exact gap
+  itself is +0.056 % off: neither the fit nor an alias-free cell integral of the layer
+  remainder (tried: +0.115 %) removes it; it falls to 0.024 % at n = 256 (h = one cell).
+  Ellipses: a fit in a sector around each axis (the gap's
   intensity varies along the edge); Hertz ellipse with dy = dx/3 at n = 128: r_a +0.02 %,
   r_b +0.05 % (the ``p^2`` fit with the moment shape: -0.18 %, +0.19 %).
 * :func:`edge_fit_axes` -- for uncoated circular contacts: ``p^2`` is exactly linear in ``s`` (Hertz),

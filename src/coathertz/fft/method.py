@@ -7,8 +7,9 @@ with load control (:mod:`coathertz.fft.solver`) and measures it
 (:mod:`coathertz.fft.estimators`).
 
 A solve without a warm start begins from the solution on the grid with cells twice as large
-(recursively, ``nested``); the ``|k|`` preconditioner is applied where it pays
-(:func:`~coathertz.fft.solver.prefer_precondition`). The contact radius is the sub-cell closing
+(recursively, ``nested``; :func:`prolong_pressure`), and CG is preconditioned by the inverse
+of the kernel (:meth:`~coathertz.fft.solver.Convolver.precondition`). The contact radius is the
+sub-cell closing
 of the gap outside the contact (:func:`~coathertz.fft.estimators.gap_fit_axes`); the paper's
 ``sqrt(S/pi)`` stays in ``meta["a_num"]``.
 
@@ -34,14 +35,21 @@ from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError
 from coathertz.fft import estimators
 from coathertz.fft.frf import INTERFACES
-from coathertz.fft.grid import DEFAULT_MARGIN, DEFAULT_N, REFIT_BELOW, Grid, check_n, grid_for_axes
+from coathertz.fft.grid import (
+    DEFAULT_MARGIN,
+    DEFAULT_N,
+    REFIT_BELOW,
+    RESOLVE_BELOW,
+    Grid,
+    check_n,
+    grid_for_axes,
+)
 from coathertz.fft.influence import body_coefficients, circulant
 from coathertz.fft.solver import (
     Convolver,
     default_workers,
     get_backend,
     polonsky_keer,
-    prefer_precondition,
 )
 from coathertz.hertz import pressure_elliptical
 from coathertz.materials import Body
@@ -51,10 +59,17 @@ _CACHE: OrderedDict = OrderedDict()
 _CACHE_SIZE = 64
 INIT_SCALE = 0.8
 #: Nested start: grids with at least this many cells per side start from the solution on the
-#: grid with cells twice as large, solved to ``NESTED_TOL`` (1e-3 gave the fewest transforms in
-#: all over six cases at n = 128, 1e-4 at 256, both about 20 % fewer than without).
+#: grid with cells twice as large, solved to ``NESTED_TOL``. With the kernel-inverse
+#: preconditioner, over the 30 cases of the benchmark set (tests/benchmarks/bench_fft.py
+#: ``--family``) the largest count of transform pairs at n = 128 / 512 was 47.8 / 42.6 for
+#: 3e-4, 40.8 / 41.6 for 1e-3, 40.4 / 51.0 for 2e-3, 36.6 / 42.2 for 3e-3, 38.9 / 52.9 for
+#: 5e-3 and 41.4 / 63.9 for 1e-2 (medians 20-22 / 23-25): the worst case is sensitive to it.
 NESTED_MIN_N = 64
-NESTED_TOL = 1e-3
+NESTED_TOL = 3e-3
+#: Coarse levels with at least this many cells per side are preconditioned too (it saved up
+#: to a fifth of the pairs at n = 512 and cost 2-10 % at n = 128, where the coarse levels are
+#: 64 and 32).
+PRECONDITION_COARSE_MIN_N = 128
 
 
 def coefficients(body: Body, grid: Grid, interface: str = "bonded") -> np.ndarray:
@@ -108,21 +123,23 @@ class FFTMethod:
         substrate without friction; transfer-matrix FRF).
     tol, max_iter
         CG tolerance on ``sum |dp| dA / W`` (P&K's measure) and iteration cap. At the default
-        1e-6 the results differ from those at 1e-12 by < 5e-8 in delta and < 1e-5 in p0 with
-        the same contact set (measured on four coated cases at n = 128), far below the
+        1e-6 the results differ from those at 1e-12 by < 1.3e-9 in delta and < 1.4e-8 in p0
+        (preconditioned; measured on four coated cases at n = 128), far below the
         discretisation error.
     precondition
-        CG direction preconditioned by ``|k|`` (:func:`~coathertz.fft.solver.polonsky_keer`):
-        ``True``, ``False`` or ``None`` (default: where it pays,
-        :func:`~coathertz.fft.solver.prefer_precondition`, i.e. where the kernel behaves like
-        a half-space's ``1/|k|``; thin layers on a rigid base are already well conditioned
-        and the preconditioner slows them down up to 5x).
+        CG direction preconditioned by the inverse of the kernel
+        (:func:`~coathertz.fft.solver.polonsky_keer`; default ``True``): iterations flat in
+        ``n``; half the transform pairs of plain CG on half-space-like kernels, about as many
+        on thin layers over a rigid base.
     nested
         Start a solve without a warm start from the solution on the grid with cells twice
         as large (``n >= 64``): about 20 % fewer transform-pair equivalents in all.
     adapt
         Re-grid on the computed contact when it fills less than ``REFIT_BELOW`` of the
-        estimate or touches the margin (see :mod:`coathertz.fft.grid`).
+        estimate or touches the margin (see :mod:`coathertz.fft.grid`), so that the radius
+        gets the nominal ``n / (2 margin)`` cells. The contact of the nested start's coarse
+        solve decides it before the fine solve (or, in a sweep with warm starts, the previous
+        case's contact); the fine solve is repeated only when the fine contact disagrees.
     radius
         Estimator reported as ``a``: ``edge-fit`` (default, sub-cell) or ``area`` (the paper's
         ``sqrt(S/pi)``, ``meta["a_num"]``); both are always in ``meta``. The edge fit is the
@@ -165,7 +182,7 @@ class FFTMethod:
     interface: str = "bonded"
     tol: float = 1e-6
     max_iter: int = 2000
-    precondition: bool | None = None
+    precondition: bool = True
     nested: bool = True
     adapt: bool = True
     radius: str = "edge-fit"
@@ -180,6 +197,8 @@ class FFTMethod:
             raise CoatHertzError(f"interface must be one of {INTERFACES}, got {self.interface!r}")
         if self.radius not in ("edge-fit", "area"):
             raise CoatHertzError(f"radius must be 'edge-fit' or 'area', got {self.radius!r}")
+        if not isinstance(self.precondition, bool):
+            raise CoatHertzError(f"precondition must be True or False, got {self.precondition!r}")
         if not (isinstance(self.tol, float | int) and 0 < self.tol < 1e-2):
             raise CoatHertzError(f"tol must satisfy 0 < tol < 1e-2, got {self.tol!r}")
         get_backend(self.backend, self.fft_workers())
@@ -228,41 +247,78 @@ class FFTMethod:
             if not self.supports(c):
                 raise CoatHertzError("FFT method needs a point contact (finite Rx and Ry)")
         grids = [grid or self.grid_for(c) for c in cases]
+        adaptive = self.adapt and grid is None
         groups: dict[tuple, list[int]] = {}
         for i, g in enumerate(grids):
             groups.setdefault(g.key(), []).append(i)
         out: list[ContactResult | None] = [None] * len(cases)
         for idx in groups.values():
-            p_prev = None
+            prev: tuple[ContactResult, Grid] | None = None
             for s in range(0, len(idx), batch):
                 chunk = idx[s : s + batch]
-                res = self._solve_batch([cases[i] for i in chunk], grids[chunk[0]], p_prev)
+                g = grids[chunk[0]]
+                p_start = None
+                if prev is not None:
+                    # warm start from the previous case; with ``adapt``, on the grid its contact
+                    # asked for (a sweep along H changes the contact little from case to case)
+                    r_prev, g_prev = prev
+                    if adaptive:
+                        g = self._refit(r_prev.meta["extent"], (r_prev.r_a, r_prev.r_b), g) or g
+                    p_start = r_prev.fields["pressure"]
+                    if g != g_prev:
+                        p_start = prolong_pressure(p_start, g_prev, g)
+                res = self._solve_batch(
+                    [cases[i] for i in chunk], g, p_start, probe=adaptive and batch == 1
+                )
+                if adaptive:
+                    res = [self._adapt(cases[i], r) for i, r in zip(chunk, res, strict=True)]
                 if warm_start and batch == 1:
-                    p_prev = res[0].fields["pressure"]
+                    prev = (res[0], Grid(**res[0].meta["grid"]))
                 for i, r in zip(chunk, res, strict=True):
                     out[i] = r if self.keep_fields else dataclasses.replace(r, fields={})
-        if self.adapt and grid is None:
-            for i, r in enumerate(out):
-                g = grids[i]
-                for _ in range(4):
-                    new = self._refit(r, g)
-                    if new is None:
-                        break
-                    g = new
-                    r = self._solve_batch([cases[i]], g)[0]
-                out[i] = r if self.keep_fields else dataclasses.replace(r, fields={})
         return out  # type: ignore[return-value]
 
+    def _adapt(self, case: ContactCase, r: ContactResult) -> ContactResult:
+        """Re-solve on the grid the computed contact asks for (at most 4 times), see
+        :mod:`coathertz.fft.grid`; the pairs spent on grids given up are counted in meta."""
+        g = Grid(**r.meta["grid"])
+        spent = 0.0
+        for _ in range(4):
+            new = self._refit(r.meta["extent"], (r.r_a, r.r_b), g, RESOLVE_BELOW)
+            if new is None:
+                break
+            spent += r.meta["pair_equivalents_total"]
+            g = new
+            r = self._solve_batch([case], g)[0]
+        if spent > 0:
+            r.meta["pair_equivalents_total"] += spent
+            r.meta["regridded"] = True
+        return r
+
     # internals ------------------------------------------------------------------------
-    def _refit(self, r: ContactResult, g: Grid) -> Grid | None:
-        ext_x, ext_y = r.meta["extent"]
+    def _refit(
+        self,
+        extent: Sequence[float],
+        axes: tuple[float, float],
+        g: Grid,
+        below: float = REFIT_BELOW,
+    ) -> Grid | None:
+        """The grid for a contact of ``extent`` (half-widths of its cells) and semi-axes
+        ``axes`` found on ``g``, or ``None`` when ``g`` suits it: the contact neither comes
+        within two cells of the boundary nor fills less than ``below`` of the estimate (see
+        :mod:`coathertz.fft.grid`)."""
+        ext_x, ext_y = extent
         hx, hy = g.half_widths
         touching = ext_x > hx - 2 * g.dx or ext_y > hy - 2 * g.dy
-        small = max(ext_x / hx, ext_y / hy) < REFIT_BELOW / self.margin
+        small = max(ext_x / hx, ext_y / hy) < below / self.margin
         if not (touching or small):
             return None
-        ra = max(r.r_a, ext_x) * (1.5 if touching else 1.0)
-        rb = max(r.r_b, ext_y) * (1.5 if touching else 1.0)
+        if touching:
+            ra, rb = 1.5 * max(axes[0], ext_x), 1.5 * max(axes[1], ext_y)
+        else:  # on the computed contact, leaving at least 3 cells outside its extent
+            room = self.margin * (1.0 - 3.0 / (self.n / 2 - 0.5))
+            ra = max(axes[0], ext_x / room)
+            rb = max(axes[1], ext_y / room)
         ratio = self.spacing_ratio if self.spacing_ratio is not None else g.dy / g.dx
         return grid_for_axes(ra, rb, self.n, self.margin, ratio)
 
@@ -288,15 +344,41 @@ class FFTMethod:
         sol = polonsky_keer(
             Convolver(kern, be), g0, np.array([c.W for c in cases]), coarse.cell_area,
             tol=NESTED_TOL, max_iter=self.max_iter, p_init=np.stack(p0),
+            precondition=self.precondition and min(coarse.nx, coarse.ny) >= PRECONDITION_COARSE_MIN_N,
         )
         cost = (sol.convolutions + cost) / 4
-        return [prolong(sol.p[k], coarse, grid) for k in range(len(cases))], cost
+        return [prolong_pressure(sol.p[k], coarse, grid) for k in range(len(cases))], cost
 
     def _solve_batch(
-        self, cases: list[ContactCase], grid: Grid, p_prev: np.ndarray | None = None
+        self,
+        cases: list[ContactCase],
+        grid: Grid,
+        p_prev: np.ndarray | None = None,
+        probe: bool = False,
     ) -> list[ContactResult]:
+        """Solve ``cases`` on ``grid``, from ``p_prev`` or the nested coarse start.
+
+        ``probe`` (one case): when the coarse start's contact asks for another grid
+        (:meth:`_refit`), move there before the fine solve, so that the re-gridding costs a
+        coarse solve rather than a fine one; the coarse cost is counted in
+        ``meta["pair_equivalents_total"]``.
+        """
         t0 = time.perf_counter()
         be = get_backend(self.backend, self.fft_workers())
+        probe_cost, moved = 0.0, False
+        nested = p_prev is None and self.nested and min(grid.nx, grid.ny) >= NESTED_MIN_N
+        probe = probe and nested and len(cases) == 1
+        if probe:
+            p_c, cost = self._coarse_start(cases, grid, be)
+            m = p_c[0] > 0
+            if np.any(m):
+                X, Y = np.meshgrid(grid.x, grid.y)
+                ext = (float(np.max(np.abs(X[m]))) + grid.dx / 2,
+                       float(np.max(np.abs(Y[m]))) + grid.dy / 2)
+                new = self._refit(ext, estimators.moment_axes(p_c[0], grid), grid)
+                if new is not None:  # start from the probe, interpolated to the new grid
+                    p_c = [prolong_pressure(p_c[0], grid, new)]
+                    probe_cost, moved, grid = cost, True, new
         kern = np.stack([case_coefficients(c, grid, self.interface) for c in cases])
         g0 = np.stack([initial_gap(c, grid) for c in cases])
         W = np.array([c.W for c in cases])
@@ -309,11 +391,13 @@ class FFTMethod:
             else:
                 p_init.append(pressure_elliptical(X, Y, INIT_SCALE * ra, INIT_SCALE * rb, 1.0))
         nested_conv = 0.0
-        if p_prev is None and self.nested and min(grid.nx, grid.ny) >= NESTED_MIN_N:
+        if probe:  # the probe was the coarse start (on this grid, or moved to it)
+            p_init, nested_conv = p_c, (0.0 if moved else cost)
+        elif nested:
             p_init, nested_conv = self._coarse_start(cases, grid, be)
         t1 = time.perf_counter()
-        conv = Convolver(kern, be, spacing=(grid.dy, grid.dx))
-        pre = prefer_precondition(conv) if self.precondition is None else self.precondition
+        conv = Convolver(kern, be)
+        pre = bool(self.precondition)
         sol = polonsky_keer(
             conv, g0, W, grid.cell_area, tol=self.tol, max_iter=self.max_iter,
             p_init=np.stack(p_init), precondition=pre,
@@ -354,6 +438,12 @@ class FFTMethod:
                 "penetration": float(sol.penetration[k]),
                 "convolutions_batch": int(sol.convolutions),
                 "coarse_pair_equivalents_batch": float(nested_conv),
+                # transform pairs of this solve per case (coarse levels weighted by their size)
+                # and with the solves on grids given up by the re-gridding (``adapt``)
+                "pair_equivalents": (sol.convolutions + nested_conv) / len(cases),
+                "pair_equivalents_total": (sol.convolutions + nested_conv) / len(cases)
+                + probe_cost,
+                "regridded": moved,
                 "preconditioned": bool(pre),
                 "batch": len(cases),
                 "wall_time": per_case,
@@ -386,6 +476,23 @@ class FFTMethod:
                 )
             )
         return results
+
+
+def prolong_pressure(pc: np.ndarray, coarse: Grid, fine: Grid) -> np.ndarray:
+    """A coarse contact pressure on ``fine``: :func:`prolong`, cut to the contact.
+
+    Bilinear interpolation spreads pressure half a coarse cell beyond the coarse contact set;
+    the prolonged pressure is set to zero where the interpolated contact indicator is below
+    1/2, i.e. outside the midline between the last contact and the first free coarse cell
+    centres (the coarse set's best estimate of the edge). The fine iteration then starts with
+    the contact set within about a fine cell of its own (measured: frictionless E = 4,
+    H = 0.1 at n = 128, 8128 cells at the start for 7661 at the end without the cut, 7757
+    with it) and changes it less.
+    """
+    pf = prolong(pc, coarse, fine)
+    chi = prolong((pc > 0).astype(float), coarse, fine)
+    pf[chi < 0.5] = 0.0
+    return pf
 
 
 def prolong(pc: np.ndarray, coarse: Grid, fine: Grid) -> np.ndarray:

@@ -23,13 +23,16 @@ Efficiency
   (clipping negative pressures, re-activating overlapping points) change at most
   :data:`MAX_DIRECT_CELLS` cells, their response is added directly from the kernel; more
   changes, and every ``REFRESH`` iterations, take a fresh ``K p``;
-* the ``|k|`` preconditioner (:meth:`Convolver.precondition`) costs a second transform pair
-  per iteration; :func:`prefer_precondition` applies it where the kernel is half-space-like
-  (iterations then stay flat in n: 9-18 at n = 128-512), not on thin layers over a rigid
-  base (already well conditioned, 6-28 iterations without). With the nested start of
-  :class:`~coathertz.fft.method.FFTMethod`, the transform pairs per solve (coarse pairs
-  counted a quarter) are 12-48 at n = 128, 18-47 at 256, 27-48 at 512 over 30 cases (the
-  previous path: 45-97 for the benchmark cases, growing with n);
+* the CG direction is preconditioned by the inverse of the kernel's transform
+  (:meth:`Convolver.precondition`, one more transform pair per iteration): the exact inverse
+  of the operator on the padded grid, so that CG is left with the restriction to the contact
+  set and its changes. Iterations stay flat in n and in the layer: 6-15 over 30 cases of the
+  paper's families at n = 128-512 (a ``|k|`` preconditioner, the inverse for a half-space
+  only, cost up to 5x on thin layers over a rigid base; plain CG needed 9-38 there, growing
+  with n). With the nested start of :class:`~coathertz.fft.method.FFTMethod`, the transform
+  pairs per solve (coarse pairs weighted by their size, re-gridding included) over the 30
+  cases are 18-37 (median 23) at n = 128, 19-41 (24) at 256 and 22-42 (25) at 512
+  (``tests/benchmarks/bench_fft.py --family``; the previous path: 15-48, 18-47, 19-53);
 * the array namespace is chosen at run time (``backend="numpy"`` or ``"cupy"``), so the same
   code runs on a GPU with CuPy.
 
@@ -49,6 +52,8 @@ import numpy as np
 from coathertz.errors import CoatHertzError, ConvergenceError
 
 REFRESH = 16
+#: Floor of the kernel transform, relative to its maximum, in the preconditioner.
+PRECONDITION_FLOOR = 1e-6
 #: Up to this many cells changed by the projections, their response is added directly from the
 #: kernel (three passes over the grid per cell) instead of a fresh transform pair; the two cost
 #: about the same at ~20 cells for n = 128-512 (the pair's cost per cell grows like log n).
@@ -118,8 +123,8 @@ def get_backend(name: str = "numpy", workers: int | None = -1) -> Backend:
 class Convolver:
     """``u = K * p`` on a grid by zero-padded DC-FFT; ``khat`` may carry a batch axis.
 
-    ``spacing = (dy, dx)`` enables :meth:`precondition`, the multiplication by ``|k|`` (the
-    inverse of the half-space FRF ``2/(E* |k|)`` up to a constant factor, which CG does not see).
+    :meth:`precondition` multiplies by the inverse of the kernel's transform (the CG
+    preconditioner of :func:`polonsky_keer`; its scale does not matter to CG).
 
     Work buffers
     ------------
@@ -138,18 +143,19 @@ class Convolver:
     only a few cells change.
     """
 
-    def __init__(self, kernel_circ, backend: Backend, spacing: tuple[float, float] | None = None):
+    def __init__(self, kernel_circ, backend: Backend):
         self.backend = backend
         kc = backend.asarray(kernel_circ)
         self.shape2 = tuple(kc.shape[-2:])
         self.ny, self.nx = self.shape2[0] // 2, self.shape2[1] // 2
         self.khat = backend.rfft2(kc, s=self.shape2)
-        self.mhat = None
-        if spacing is not None:
-            dy, dx = spacing
-            ky = 2 * np.pi * np.fft.fftfreq(self.shape2[0], dy)
-            kx = 2 * np.pi * np.fft.rfftfreq(self.shape2[1], dx)
-            self.mhat = backend.asarray(np.hypot(ky[:, None], kx[None, :]) * dx)
+        # the preconditioner: the inverse of the kernel's transform (real and positive for the
+        # even, positive-definite kernels of elastic bodies), floored against round-off
+        # (stored complex like ``khat``: a real factor would make the in-place product cast
+        # through numpy's ufunc buffer, an allocation of 128 KiB per call)
+        kh = self.khat.real
+        top = kh.max(axis=(-2, -1), keepdims=True)
+        self.mhat = (top / backend.xp.maximum(kh, PRECONDITION_FLOOR * top)).astype(complex)
         self._kc = kc
         self._G = None
         self._buffers: dict = {}
@@ -203,7 +209,8 @@ class Convolver:
         return self._apply(p, self.khat, out)
 
     def precondition(self, r, out=None):
-        """``|k| r`` on the padded grid (an approximate inverse of the half-space operator)."""
+        """``K^-1 r`` on the padded grid: the exact inverse of the (unrestricted, cyclic)
+        convolution, an approximate inverse of the operator restricted to the contact."""
         return self._apply(r, self.mhat, out)
 
     def prepare_cells(self):
@@ -229,38 +236,6 @@ class Convolver:
             np.copyto(tmp, G[ny - 1 - i : 2 * ny - 1 - i, nx - 1 - j : 2 * nx - 1 - j])
             tmp *= cj
             u[k] += tmp
-
-
-#: :func:`prefer_precondition` chooses the ``|k|`` preconditioner when it shrinks the spread
-#: of the kernel's transform by more than this factor.
-PRECONDITION_GAIN = 30.0
-
-
-def prefer_precondition(conv: Convolver) -> bool:
-    """Whether the ``|k|`` preconditioner pays on this kernel (every problem of the batch).
-
-    CG needs about ``sqrt(kappa)`` iterations, ``kappa`` the spread (max/min) of the
-    operator's spectrum; a preconditioned iteration costs two transform pairs instead of one.
-    The spread is read on the ``kx`` axis of the kernel transform, without and with the
-    factor ``|k|``. A half-space (``K ~ 1/|k|``): about 120 -> 1.2 at n = 128; a thin layer on
-    a rigid base (``K`` nearly flat, or rising like ``k^2`` when incompressible): 3-20 ->
-    20-6000. Measured over 28 coated cases at n = 128, preconditioning helped (by up to 40 %)
-    wherever the ratio exceeded 30 and cost up to 5x where it was below 2; between, the two
-    were within 10 %.
-    """
-    if conv.mhat is None:
-        return False
-    kh = conv.backend.to_numpy(conv.khat)
-    mh = conv.backend.to_numpy(conv.mhat)
-    prof = np.abs(kh[..., 0, 1:].real)
-    prof = prof.reshape(-1, prof.shape[-1])
-    k = mh[0, 1:]
-    if np.any(prof <= 0):
-        return False
-    gain = (prof.max(axis=1) / prof.min(axis=1)) / (
-        (prof * k).max(axis=1) / (prof * k).min(axis=1)
-    )
-    return bool(np.all(gain > PRECONDITION_GAIN))
 
 
 @dataclass
@@ -309,16 +284,19 @@ def polonsky_keer(
     p_init
         Initial pressure (any non-negative field; rescaled to the load), default uniform.
     precondition
-        Precondition the CG direction with ``|k|`` (needs ``conv`` built with ``spacing``): the
-        iteration count roughly halves and stops growing with ``n`` (31-36 -> 17-27 at n = 128,
-        57-105 -> 24-35 at n = 512), each iteration costs one more FFT pair, and at equal ``tol``
-        the solution is 10-100x closer to the converged one.
+        Precondition the CG direction with the inverse of the kernel
+        (:meth:`Convolver.precondition`): the exact inverse of the operator on the whole
+        padded grid, so that only the restriction to the contact set and the changes of that
+        set are left to CG. Each iteration costs one more transform pair; the iterations
+        stay flat in ``n`` and in the layer (6-15 at n = 128-512 over 30 cases of the paper's
+        families, against 9-38 without, growing with ``n``), and at equal ``tol`` the
+        solution is closer to the converged one (four coated cases at n = 128, ``tol`` 1e-6:
+        within 1.3e-9 in delta and 1.4e-8 in p0 of the solution at 1e-12; without: 1.1e-8
+        and 8.9e-7).
     callback
         Called with the iteration number at the start of each iteration (diagnostics; the
         allocation test uses it).
     """
-    if precondition and conv.mhat is None:
-        raise CoatHertzError("precondition=True needs a Convolver built with spacing=(dy, dx)")
     if not (0 < tol < 1):
         raise CoatHertzError(f"tol must satisfy 0 < tol < 1, got {tol!r}")
     if not (isinstance(max_iter, int) and max_iter >= 1):
