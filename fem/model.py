@@ -11,13 +11,17 @@ are the ``u_z`` dofs of surface nodes with ``r <= r_fine``.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
 from skfem import Basis, ElementQuad1, ElementQuad2, ElementVector, FacetBasis, LinearForm, asm
+from skfem.assembly import Dofs
+from skfem.quadrature import get_quadrature
 
 from coathertz.fem import forms
+from coathertz.fem.affine import AffineQ2, dof_locations
 from coathertz.fem.material import LinearElastic, MaterialLaw
 from coathertz.fem.mesh import LayeredMesh
 from coathertz.fem.ordering import grid_indices
@@ -44,32 +48,42 @@ class FEModel:
     farfield_material: Material | None
     farfield: object
     legacy_assembly: bool = False  # skfem's generic assembly (the benchmark's "before" path)
-    basis: Basis = field(init=False)
-    n_u: int = field(init=False)
 
     def __post_init__(self) -> None:
         mesh = self.lm.mesh
-        self.basis = Basis(mesh, ElementVector(ElementQuad2()), intorder=INTORDER)
-        self.n_u = self.basis.N
+        self.elem = ElementVector(ElementQuad2())
+        self.dofs = Dofs(mesh, self.elem)  # the dof layout; the quadrature basis only on demand
+        self.n_u = self.dofs.N
         self._p_blocks = []  # (pressure dofs, coupling, compliance, scale) per mixed region
         self._p_locs: list[np.ndarray] = []  # (r, z) of the pressure dofs of each mixed region
         self._K: sp.csr_matrix | None = None
-        locs = self.basis.doflocs
-        self.r_dof, self.z_dof = locs[0], locs[1]
+        self.doflocs = dof_locations(mesh, self.elem, self.dofs)
+        self.r_dof, self.z_dof = self.doflocs[0], self.doflocs[1]
         comp = np.zeros(self.n_u, dtype=int)
-        comp[self.basis.nodal_dofs[1]] = 1
-        comp[self.basis.facet_dofs[1]] = 1
-        comp[self.basis.interior_dofs[1]] = 1
+        comp[self.dofs.nodal_dofs[1]] = 1
+        comp[self.dofs.facet_dofs[1]] = 1
+        comp[self.dofs.interior_dofs[1]] = 1
         self.comp = comp
         tol = 1e-9 * self.lm.a_ref
         self.top = np.nonzero((np.abs(self.z_dof) < tol) & (comp == 1))[0]
         self.top = self.top[np.argsort(self.r_dof[self.top])]
         # nodal area weights int phi_i 2 pi r ds of the surface u_z dofs
         top_facets = mesh.facets_satisfying(lambda x: np.abs(x[1]) < tol)
-        fb = FacetBasis(mesh, self.basis.elem, facets=top_facets, intorder=INTORDER)
+        fb = FacetBasis(mesh, self.elem, facets=top_facets, intorder=INTORDER)
         wz = asm(LinearForm(lambda v, w: v[1] * 2 * np.pi * w.x[0]), fb)
         self.weights_all = wz
         self.tie = self._tie_pairs()
+
+    @cached_property
+    def basis(self) -> Basis:
+        """The skfem Q2 vector basis at the quadrature points (post-processing, material-law paths;
+        the linear stiffness does without it, :mod:`coathertz.fem.affine`)."""
+        return Basis(self.lm.mesh, self.elem, intorder=INTORDER, dofs=self.dofs)
+
+    @property
+    def nq(self) -> int:
+        """Quadrature points per element."""
+        return len(get_quadrature(self.elem.refdom, INTORDER)[1])
 
     def _tie_pairs(self) -> np.ndarray:
         """Frictionless interface on an elastic substrate: pairs ``[2, n]`` of ``u_z`` dofs at the
@@ -128,7 +142,7 @@ class FEModel:
             return self._K
         mesh = self.lm.mesh
         nel = mesh.t.shape[1]
-        nq = self.basis.X.shape[-1]
+        nq = self.nq
         lam = np.zeros((nel, nq))
         mu = np.zeros((nel, nq))
         blocks = []
@@ -140,7 +154,7 @@ class FEModel:
             mu[reg.elements] = mu_r
             lam[reg.elements] = 0.0 if reg.mixed else lam_r
             if reg.mixed:
-                ub = Basis(mesh, self.basis.elem, intorder=INTORDER, elements=reg.elements)
+                ub = Basis(mesh, self.elem, intorder=INTORDER, elements=reg.elements)
                 pb = Basis(mesh, ElementQuad1(), intorder=INTORDER, elements=reg.elements)
                 inv_lam = 0.0 if math.isinf(lam_r) else 1.0 / lam_r
                 Bm = asm(forms.pressure_coupling, pb, ub)
@@ -151,8 +165,8 @@ class FEModel:
                 p_locs.append(pb.doflocs[:, pd])
         if self.legacy_assembly:
             K = asm(forms.elasticity, self.basis, lam=lam, mu=mu)
-        else:
-            K = forms.assemble_elasticity(self.basis, lam, mu)  # == asm(forms.elasticity, ...), faster
+        else:  # == asm(forms.elasticity, ...) to round-off, about ten times faster
+            K = self._elasticity(lam, mu)
         self._p_blocks = blocks
         self._p_locs = p_locs
         if blocks:
@@ -170,9 +184,18 @@ class FEModel:
         self._K = sp.csr_matrix(K)
         return self._K
 
+    def _elasticity(self, lam: np.ndarray, mu: np.ndarray) -> sp.csr_matrix:
+        """The stiffness from the affine tables of the tensor mesh (skfem's generic assembly if an
+        element is not a parallelogram)."""
+        try:
+            q = AffineQ2.build(self.lm.mesh, INTORDER)
+        except ValueError:
+            return asm(forms.elasticity, self.basis, lam=lam, mu=mu)
+        return q.elasticity(lam, mu, self.dofs.element_dofs, self.n_u)
+
     def dof_locations(self) -> np.ndarray:
         """``(r, z)`` of every unknown of :meth:`stiffness` (``[2, n_dofs]``; call it after assembly)."""
-        return np.hstack([self.basis.doflocs, *self._p_locs, self.basis.doflocs[:, self.tie[0]]])
+        return np.hstack([self.doflocs, *self._p_locs, self.doflocs[:, self.tie[0]]])
 
     def dof_grid(self) -> tuple[np.ndarray, np.ndarray]:
         """Indices ``(i, j)`` of every unknown's node in the tensor grid of Q2 nodes (the
