@@ -1,16 +1,21 @@
-"""Quadrature tables of the Q2 element on parallelogram quadrilaterals (the tensor-product mesh).
+"""Stiffness of Q2 elements on axis-aligned rectangles (the tensor-product mesh), without skfem's basis.
 
 scikit-fem's :class:`skfem.CellBasis` maps every basis function through the generic
-isoparametric mapping (a Jacobian inverse per function and quadrature point); on the meshes of
-:mod:`coathertz.fem.mesh` every element is a rectangle, so the mapping is affine,
+isoparametric mapping (a Jacobian inverse per function and quadrature point). On the meshes of
+:mod:`coathertz.fem.mesh` every element is a rectangle ``h_r x h_z``, so with skfem's reference
+square ``[0, 1]^2`` and its Q2 functions ``N_k(xi, eta)``
 
-.. math:: x(\\xi, \\eta) = p_0 + (p_1 - p_0)\\,\\xi + (p_3 - p_0)\\,\\eta ,\\qquad
-          \\nabla \\phi = J^{-T} \\hat\\nabla \\hat\\phi ,
+.. math:: \\partial_r \\phi_k = \\partial_\\xi N_k / h_r, \\quad
+          \\partial_z \\phi_k = \\partial_\\eta N_k / h_z, \\quad
+          r = r_0 + h_r \\xi, \\quad dx = |h_r h_z| W_q ,
 
-(``p_k`` the element's vertices, ``(xi, eta)`` in skfem's reference square ``[0, 1]^2``) and the
-reference values and gradients of the nine Q2 functions are tabulated once. Same quadrature rule
-as ``Basis(mesh, ElementVector(ElementQuad2()), intorder=INTORDER)``, same numbers to round-off
-(``tests/fem/test_forms.py``), about ten times cheaper to build.
+(``xi`` the reference coordinate along ``r``; ``MeshQuad.init_tensor`` maps the first one to ``z``),
+
+and every element matrix is a combination of a few fixed reference outer products
+(``N_r N_r^T``, ``N N^T``, ...) at each quadrature point, with per-element coefficients
+(:meth:`RectQ2.elasticity`): one matrix product for the whole mesh. Same quadrature rule as
+``Basis(mesh, ElementVector(ElementQuad2()), intorder=INTORDER)``, the same matrix to round-off
+(``tests/fem/test_forms.py``), about ten times cheaper than skfem's generic assembly.
 
 :func:`dof_locations` gives the global dof locations without any quadrature (the model's dof
 layout: axis, surface, candidates) so that the full skfem basis is built only when a
@@ -20,6 +25,7 @@ post-processing step asks for it.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
@@ -45,78 +51,104 @@ def dof_locations(mesh: MeshQuad, elem, dofs: Dofs) -> np.ndarray:
 
 
 @dataclass(frozen=True)
-class AffineQ2:
-    """Q2 basis data at the quadrature points of every (parallelogram) element.
+class RectQ2:
+    """Reference Q2 tables and the geometry of every (axis-aligned rectangular) element.
 
     Attributes
     ----------
+    h_r, h_z
+        Signed element sizes ``[nel]`` (the Jacobian ``diag(h_r, h_z)`` of skfem's map).
     r
         Radius of the quadrature points ``[nel, nq]``.
-    dx
-        Quadrature weight times the Jacobian determinant ``[nel, nq]``.
-    phi
-        Reference values of the nine scalar Q2 functions ``[9, nq]`` (the same on every element).
-    d_r, d_z
-        Physical derivatives of the nine functions ``[nel, 9, nq]``.
+    W
+        Reference quadrature weights ``[nq]``.
+    N, N_r, N_z
+        Values of the nine scalar Q2 functions and their reference derivatives along the reference
+        coordinate that maps to ``r`` and to ``z`` ``[9, nq]``.
     """
 
+    h_r: np.ndarray
+    h_z: np.ndarray
     r: np.ndarray
-    dx: np.ndarray
-    phi: np.ndarray
-    d_r: np.ndarray
-    d_z: np.ndarray
+    W: np.ndarray
+    N: np.ndarray
+    N_r: np.ndarray
+    N_z: np.ndarray
 
     @classmethod
-    def build(cls, mesh: MeshQuad, intorder: int) -> AffineQ2:
-        """Tables on ``mesh``; :class:`ValueError` if an element is not a parallelogram (then the
-        generic skfem assembly is the way)."""
+    def build(cls, mesh: MeshQuad, intorder: int) -> RectQ2:
+        """Tables on ``mesh``; :class:`ValueError` unless every element is an axis-aligned rectangle
+        with the same orientation of the reference square (then the generic skfem assembly is the way)."""
         p = mesh.p[:, mesh.t]  # [2, 4, nel]
-        e1, e3 = p[:, 1] - p[:, 0], p[:, 3] - p[:, 0]
+        e1, e3 = p[:, 1] - p[:, 0], p[:, 3] - p[:, 0]  # images of the reference xi and eta edges
         scale = np.abs(e1).max() + np.abs(e3).max()
-        if np.abs(p[:, 2] - p[:, 1] - e3).max() > 1e-12 * scale:
-            raise ValueError("AffineQ2 needs parallelogram elements")
+        tol = 1e-12 * scale
         X, W = get_quadrature(ElementQuad2.refdom, intorder)
         elem = ElementQuad2()
-        phi = np.empty((9, X.shape[1]))
-        dref = np.empty((2, 9, X.shape[1]))
+        N = np.empty((9, X.shape[1]))
+        dN = np.empty((2, 9, X.shape[1]))
         for k in range(9):
-            phi[k], dref[:, k] = elem.lbasis(X, k)
-        det = e1[0] * e3[1] - e1[1] * e3[0]  # [nel]; J = [[e1_r, e3_r], [e1_z, e3_z]]
-        inv_t = np.array([[e3[1], -e1[1]], [-e3[0], e1[0]]]) / det  # J^{-T} [2, 2, nel]
-        d = np.einsum("abe,bkq->aekq", inv_t, dref)  # grad = J^{-T} grad_ref
+            N[k], dN[:, k] = elem.lbasis(X, k)
+        if np.abs(p[:, 2] - p[:, 1] - e3).max() > tol:
+            raise ValueError("RectQ2 needs rectangular elements")
+        if np.abs(e1[1]).max() <= tol and np.abs(e3[0]).max() <= tol:  # xi along r
+            h_r, h_z, d_r, d_z = e1[0], e3[1], dN[0], dN[1]
+        elif np.abs(e1[0]).max() <= tol and np.abs(e3[1]).max() <= tol:  # xi along z (MeshQuad.init_tensor)
+            h_r, h_z, d_r, d_z = e3[0], e1[1], dN[1], dN[0]
+        else:
+            raise ValueError("RectQ2 needs axis-aligned elements of one orientation")
         r = _bilinear(mesh, X[0], X[1])[0]
-        return cls(r, np.abs(det)[:, None] * W[None, :], phi, d[0], d[1])
+        return cls(h_r, h_z, r, W, N, d_r, d_z)
+
+    @cached_property
+    def _reference(self) -> np.ndarray:
+        """``R[(q, term), 18 * 18]``: the outer products of :meth:`elasticity` placed in the
+        element matrix (row ``2 k + c`` is scalar function ``k`` in component ``c``)."""
+        nq = len(self.W)
+        out = np.zeros((nq, 9, 18, 18))
+        for q in range(nq):
+            n, x, y = self.N[:, q], self.N_r[:, q], self.N_z[:, q]
+            rr = [np.outer(x, x), np.outer(n, n), np.outer(x, n) + np.outer(n, x), np.outer(y, y)]
+            rz = [np.outer(x, y), np.outer(n, y), np.outer(y, x)]
+            zz = [np.outer(y, y), np.outer(x, x)]
+            for t, P in enumerate(rr):
+                out[q, t, 0::2, 0::2] = P
+            for t, P in enumerate(rz, start=4):
+                out[q, t, 0::2, 1::2] = P
+                out[q, t, 1::2, 0::2] = P.T
+            for t, P in enumerate(zz, start=7):
+                out[q, t, 1::2, 1::2] = P
+        return out.reshape(nq * 9, 18 * 18)
 
     def elasticity(self, lam: np.ndarray, mu: np.ndarray, element_dofs: np.ndarray, N: int) -> sp.csr_matrix:
         """The matrix of :data:`coathertz.fem.forms.elasticity` (same quadrature, equal to round-off).
 
-        With ``d_r``, ``d_z`` the gradient of a scalar Q2 function, ``h = phi / r`` (hoop strain)
-        and ``w = 2 pi r dx``, the 2 x 2 blocks of the element matrix between the scalar functions
-        ``k`` and ``l`` (the axisymmetric ``B^T D B``, Zienkiewicz & Taylor, Vol 1, Section 5.2) are::
+        With ``w = 2 pi r |h_r h_z| W_q``, ``alpha = lam w``, ``beta = mu w`` and the reference
+        functions ``N``, ``N_r``, ``N_z`` at quadrature point ``q``, the blocks of the element
+        matrix between scalar functions ``k`` and ``l`` (the axisymmetric ``B^T D B`` with
+        ``eps = (d_r u_r, d_z u_z, u_r / r, d_z u_r + d_r u_z)``, Zienkiewicz & Taylor, Vol 1,
+        Section 5.2) are, summed over ``q``::
 
-            K_rr = sum_q w [lam (d_r + h)_k (d_r + h)_l + 2 mu (d_r,k d_r,l + h_k h_l) + mu d_z,k d_z,l]
-            K_rz = sum_q w [lam (d_r + h)_k d_z,l + mu d_z,k d_r,l]
-            K_zz = sum_q w [(lam + 2 mu) d_z,k d_z,l + mu d_r,k d_r,l]
+            K_rr = (alpha + 2 beta) [N_r N_r^T / h_r^2 + N N^T / r^2]
+                   + alpha (N_r N^T + N N_r^T) / (h_r r) + beta N_z N_z^T / h_z^2
+            K_rz = alpha [N_r N_z^T / (h_r h_z) + N N_z^T / (r h_z)] + beta N_z N_r^T / (h_r h_z)
+            K_zz = (alpha + 2 beta) N_z N_z^T / h_z^2 + beta N_r N_r^T / h_r^2
 
-        each one batched matrix product over the stacked quadrature terms. Local function
-        ``2 k + c`` is scalar ``k`` in component ``c`` (skfem's ``ElementVector`` order of
-        ``element_dofs[2 k + c, e]``); ``lam``, ``mu`` are quadrature fields ``[nel, nq]``.
+        i.e. nine coefficients per element and quadrature point times fixed reference matrices:
+        one ``[nel, 9 nq] x [9 nq, 324]`` product (on one BLAS thread). ``lam``, ``mu`` are
+        quadrature fields ``[nel, nq]``; ``element_dofs[2 k + c, e]`` as in skfem's ``ElementVector``.
         """
-        w = 2 * np.pi * self.r * self.dx
-        lw, mw = (lam * w)[:, None, :], (mu * w)[:, None, :]
-        dr, dz = self.d_r, self.d_z
-        h = self.phi[None] / self.r[:, None, :]
-        a = dr + h
+        from coathertz.fem.solvers import blas_threads
 
-        def gram(left: list, right: list) -> np.ndarray:
-            return np.matmul(np.concatenate(left, axis=2), np.concatenate(right, axis=2).transpose(0, 2, 1))
-
-        Ke = np.empty((len(w), 18, 18))
-        Ke[:, 0::2, 0::2] = gram([lw * a, 2 * mw * dr, 2 * mw * h, mw * dz], [a, dr, h, dz])
-        Krz = gram([lw * a, mw * dz], [dz, dr])
-        Ke[:, 0::2, 1::2] = Krz
-        Ke[:, 1::2, 0::2] = Krz.transpose(0, 2, 1)
-        Ke[:, 1::2, 1::2] = gram([(lw + 2 * mw) * dz, mw * dr], [dz, dr])
+        r, hr, hz = self.r, self.h_r[:, None], self.h_z[:, None]
+        w = 2 * np.pi * r * np.abs(hr * hz) * self.W
+        a, b = lam * w, mu * w
+        ab = a + 2 * b
+        coef = np.stack([ab / hr**2, ab / r**2, a / (hr * r), b / hz**2,  # K_rr
+                         a / (hr * hz), a / (r * hz), b / (hr * hz),  # K_rz
+                         ab / hz**2, b / hr**2], axis=2)  # K_zz; [nel, nq, 9]
+        with blas_threads(1):
+            Ke = coef.reshape(len(w), -1) @ self._reference  # [nel, 324]
         dofs = element_dofs.T  # [nel, 18]
         rows = np.repeat(dofs, 18, axis=1).ravel()
         cols = np.tile(dofs, (1, 18)).ravel()

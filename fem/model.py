@@ -21,7 +21,7 @@ from skfem.assembly import Dofs
 from skfem.quadrature import get_quadrature
 
 from coathertz.fem import forms
-from coathertz.fem.affine import AffineQ2, dof_locations
+from coathertz.fem.affine import RectQ2, dof_locations
 from coathertz.fem.material import LinearElastic, MaterialLaw
 from coathertz.fem.mesh import LayeredMesh
 from coathertz.fem.ordering import grid_indices
@@ -208,10 +208,10 @@ class FEModel:
         return pd, (Bp @ S).tocsc(), (S @ Cp @ S).tocsr(), s
 
     def _elasticity(self, lam: np.ndarray, mu: np.ndarray) -> sp.csr_matrix:
-        """The stiffness from the affine tables of the tensor mesh (skfem's generic assembly if an
-        element is not a parallelogram)."""
+        """The stiffness from the rectangle tables of the tensor mesh (:mod:`coathertz.fem.affine`;
+        skfem's generic assembly if an element is not an axis-aligned rectangle)."""
         try:
-            q = AffineQ2.build(self.lm.mesh, INTORDER)
+            q = RectQ2.build(self.lm.mesh, INTORDER)
         except ValueError:
             return asm(forms.elasticity, self.basis, lam=lam, mu=mu)
         return q.elasticity(lam, mu, self.dofs.element_dofs, self.n_u)
