@@ -153,3 +153,23 @@ class RectQ2:
         rows = np.repeat(dofs, 18, axis=1).ravel()
         cols = np.tile(dofs, (1, 18)).ravel()
         return sp.csr_matrix((Ke.ravel(), (rows, cols)), shape=(N, N))
+
+
+def ring_weights(x: np.ndarray) -> np.ndarray | None:
+    """``int phi_i 2 pi r dr`` of the Q2 functions on a line of facets ``[x_0, x_2], [x_2, x_4], ...``
+    (``x`` sorted, odd entries the midpoints); ``None`` if ``x`` is not such a line.
+
+    Exact for the quadratic Lagrange functions ``phi`` times ``r`` on ``[x0, x0 + L]``:
+    ``2 pi L (x0 / 6, 2 x0 / 3 + L / 3, x0 / 6 + L / 6)`` for the left, middle and right node.
+    """
+    if len(x) < 3 or len(x) % 2 == 0:
+        return None
+    x0, xm, x1 = x[:-1:2], x[1::2], x[2::2]
+    L = x1 - x0
+    if np.abs(xm - 0.5 * (x0 + x1)).max() > 1e-9 * max(float(x[-1]), 1e-300):
+        return None
+    w = np.zeros(len(x))
+    w[:-1:2] += 2 * np.pi * L * x0 / 6
+    w[1::2] += 2 * np.pi * L * (2 * x0 / 3 + L / 3)
+    w[2::2] += 2 * np.pi * L * (x0 / 6 + L / 6)
+    return w

@@ -21,7 +21,7 @@ from skfem.assembly import Dofs
 from skfem.quadrature import get_quadrature
 
 from coathertz.fem import forms
-from coathertz.fem.affine import RectQ2, dof_locations
+from coathertz.fem.affine import RectQ2, dof_locations, ring_weights
 from coathertz.fem.material import LinearElastic, MaterialLaw
 from coathertz.fem.mesh import LayeredMesh
 from coathertz.fem.ordering import grid_indices
@@ -68,10 +68,14 @@ class FEModel:
         self.top = np.nonzero((np.abs(self.z_dof) < tol) & (comp == 1))[0]
         self.top = self.top[np.argsort(self.r_dof[self.top])]
         # nodal area weights int phi_i 2 pi r ds of the surface u_z dofs
-        top_facets = mesh.facets_satisfying(lambda x: np.abs(x[1]) < tol)
-        fb = FacetBasis(mesh, self.elem, facets=top_facets, intorder=INTORDER)
-        wz = asm(LinearForm(lambda v, w: v[1] * 2 * np.pi * w.x[0]), fb)
-        self.weights_all = wz
+        w_top = ring_weights(self.r_dof[self.top])
+        if w_top is None:  # not one line of facets: skfem's facet quadrature
+            top_facets = mesh.facets_satisfying(lambda x: np.abs(x[1]) < tol)
+            fb = FacetBasis(mesh, self.elem, facets=top_facets, intorder=INTORDER)
+            self.weights_all = asm(LinearForm(lambda v, w: v[1] * 2 * np.pi * w.x[0]), fb)
+        else:
+            self.weights_all = np.zeros(self.n_u)
+            self.weights_all[self.top] = w_top
         self.tie = self._tie_pairs()
 
     @cached_property
