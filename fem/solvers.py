@@ -70,6 +70,23 @@ def _delay_zero_pivots(A: sp.csr_matrix, order: np.ndarray, is_last: np.ndarray)
     return order[np.argsort(key[order], kind="stable")]
 
 
+def nd_lu(A: sp.spmatrix, grid: tuple[np.ndarray, np.ndarray],
+          diag_pivot_thresh: float = 0.01) -> Callable[[np.ndarray], np.ndarray]:
+    """``b -> A^{-1} b`` by one SuperLU factorisation in the geometric nested-dissection order of
+    the unknowns' grid nodes (:mod:`coathertz.fem.ordering`), no column reordering, diagonal pivots
+    preferred (``A`` structurally symmetric, e.g. a tangent stiffness). Measured on the plastic
+    benchmark's tangent (28.7k unknowns, 1 BLAS thread): about half the factorisation time of
+    SuperLU's minimum degree on ``A + A^T``."""
+    n = A.shape[0]
+    perm = nested_dissection(grid[0], grid[1])
+    Ap = sp.csc_matrix(sp.csr_matrix(A)[perm][:, perm])
+    lu = spla.splu(Ap, permc_spec="NATURAL", diag_pivot_thresh=diag_pivot_thresh,
+                   options={"SymmetricMode": True})
+    inv = np.empty(n, dtype=np.int64)
+    inv[perm] = np.arange(n)
+    return lambda b: lu.solve(b[perm])[inv]
+
+
 @dataclass
 class CondensedFactor:
     """One LU of ``A`` whose trailing block is the Schur complement on the unknowns ``last``.

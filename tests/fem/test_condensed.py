@@ -84,3 +84,42 @@ def test_nested_dissection_is_a_permutation_with_last_at_the_end():
     # the first separator (an even line through the middle) is eliminated after both halves
     first_half = p[: np.argmax(i[p] == 20)]
     assert set(np.unique(i[first_half])) <= set(range(20)) | set(range(21, 41))
+
+
+def _recursive_nd(i, j, last, leaf):
+    """The box-by-box recursion that :func:`nested_dissection` replaces (reference)."""
+    node = i * (int(j.max()) + 1) + j
+    out = []
+    stack = [(np.nonzero(~last)[0], False)]
+    while stack:
+        ids, emit = stack.pop()
+        if emit:
+            out.append(ids)
+            continue
+        ii, jj = i[ids], j[ids]
+        i0, i1, j0, j1 = ii.min(), ii.max(), jj.min(), jj.max()
+        if (i1 - i0 + 1) * (j1 - j0 + 1) <= leaf:
+            out.append(ids[np.argsort(node[ids], kind="stable")])
+            continue
+        key, lo, hi = (ii, i0, i1) if i1 - i0 >= j1 - j0 else (jj, j0, j1)
+        m = (lo + hi) // 2
+        m -= m % 2
+        if m <= lo:
+            m += 2
+        sep = ids[key == m]
+        stack += [(sep[np.argsort(node[sep], kind="stable")], True), (ids[key > m], False),
+                  (ids[key < m], False)]
+    return np.concatenate([*out, np.nonzero(last)[0]])
+
+
+def test_nested_dissection_equals_the_box_recursion():
+    """The level-wise ordering is the recursive one, unknown for unknown (two unknowns per node,
+    a mesh-like hole of removed unknowns on the outer boundary, candidates last)."""
+    from coathertz.fem.ordering import LEAF_NODES
+
+    i, j = np.meshgrid(np.arange(61), np.arange(37), indexing="ij")
+    i, j = np.repeat(i.ravel(), 2), np.repeat(j.ravel(), 2)
+    keep = (i < 60) & (j > 0)  # essential dofs removed: outer column and bottom row
+    i, j = i[keep], j[keep]
+    last = (j == 36) & (i < 30) & (np.arange(len(i)) % 2 == 1)
+    assert np.array_equal(nested_dissection(i, j, last), _recursive_nd(i, j, last, LEAF_NODES))
