@@ -8,7 +8,8 @@ contact candidates are taken out and put at the very end, so that the trailing b
 LU factorisation in this order is the Schur complement on the candidates
 (:class:`coathertz.fem.solvers.CondensedFactor`). Fill is comparable to SuperLU's minimum
 degree on ``A + A^T`` (measured 10.6M vs 11.5M entries of L + U on 70k unknowns), against 58M
-for reverse Cuthill-McKee.
+for reverse Cuthill-McKee, and SuperLU factorises it about twice as fast (larger supernodes:
+0.22 vs 0.47 s on Keer case A's 43.7k free unknowns, 0.15 vs 0.25 s on a plastic tangent of 28k).
 """
 
 from __future__ import annotations

@@ -25,8 +25,11 @@ run on the shared machine.
 ``--baseline REV`` (a git revision) times the ``fem/`` package of ``REV`` against the working
 tree's in one run: each version runs in its own worker process (the same interpreter and
 environment) and the solves alternate between the two, so that a shared, loaded machine slows
-both alike; it prints both wall times, their ratio, the factorisations per solve and the largest
-relative difference in ``delta``, ``a``, ``p0`` (the "identical results" check).
+both alike; it prints the median wall and CPU time of both, their ratios, the factorisations per
+solve and the largest relative difference in ``delta``, ``a``, ``p0`` (the "identical results"
+check). On a machine shared with other jobs run it with ``OPENBLAS_NUM_THREADS=1``: the CPU times
+then measure the work of each version, undisturbed by BLAS threads waiting for a busy core.
+``bench_fem_baseline.json`` holds such a run (issue 13 item 4, second round: ``--baseline 111d63a``).
 
 Usage: ``python tests/benchmarks/bench_fem.py [--repeat 3] [--legacy] [--baseline REV] [--json out.json]``.
 """
