@@ -49,6 +49,7 @@ from numpy.linalg import LinAlgError
 from scipy.linalg import cho_factor, cho_solve
 
 from coathertz.errors import ConvergenceError
+from coathertz.fem.solvers import blas_threads
 
 
 @dataclass
@@ -138,15 +139,17 @@ class Condensed:
         if prob.grid is None or not hasattr(solver, "condensed"):
             return None
         n = prob.K.shape[0]
-        free = np.setdiff1d(np.arange(n), prob.fixed)
-        pos = np.searchsorted(free, prob.cand)
-        if not np.array_equal(free[np.minimum(pos, len(free) - 1)], prob.cand):
+        is_free = np.ones(n, dtype=bool)
+        is_free[prob.fixed] = False
+        if not is_free[prob.cand].all():
             return None  # a candidate is an essential dof
-        Kr = sp.csr_matrix(prob.K)[free]
-        Kff = Kr[:, free]
-        rhs0 = prob.f[free] - Kr[:, prob.fixed] @ prob.fixed_values
+        free = np.flatnonzero(is_free)
+        pos = np.searchsorted(free, prob.cand)
+        u_fixed = np.zeros(n)
+        u_fixed[prob.fixed] = prob.fixed_values
+        rhs0 = (prob.f - prob.K @ u_fixed)[free]  # the essential values moved to the right-hand side
         try:
-            cf = solver.condensed(Kff, (prob.grid[0][free], prob.grid[1][free]), pos)
+            cf = solver.condensed(prob.K, free, (prob.grid[0][free], prob.grid[1][free]), pos)
         except (ValueError, RuntimeError):
             solver.stats["condensed_fallbacks"] = solver.stats.get("condensed_fallbacks", 0) + 1
             return None
@@ -310,12 +313,16 @@ class ActiveSet:
     reuse: bool = True  # one factorisation per contact problem (condensed solve); False: legacy
 
     def solve(self, prob: ContactProblem, solver, active0: np.ndarray) -> ContactSolution:
-        cond = Condensed.build(prob, solver) if self.reuse else None
-        if cond is None:
+        if not self.reuse:
             _no_extra(prob)
             return _loop(prob, solver, _legacy(self._step), self._update, active0.copy(), self.maxiter)
-        return _loop(prob, solver, lambda p, s, a: cond.step(a), self._update, active0.copy(), self.maxiter,
-                     finish=cond.full)
+        with blas_threads(1):  # small dense algebra (solvers module docstring)
+            cond = Condensed.build(prob, solver)
+            if cond is not None:
+                return _loop(prob, solver, lambda p, s, a: cond.step(a), self._update, active0.copy(),
+                             self.maxiter, finish=cond.full)
+        _no_extra(prob)
+        return _loop(prob, solver, _legacy(self._step), self._update, active0.copy(), self.maxiter)
 
     @staticmethod
     def _step(prob, solver, active):
@@ -348,14 +355,18 @@ class Penalty:
     reuse: bool = True
 
     def solve(self, prob: ContactProblem, solver, active0: np.ndarray) -> ContactSolution:
-        cond = Condensed.build(prob, solver) if self.reuse else None
-        if cond is None:
+        if not self.reuse:
             _no_extra(prob)
             return _loop(prob, solver, _legacy(self._step), self._update, active0.copy(), self.maxiter)
-        with np.errstate(divide="ignore"):
-            compliance = 1.0 / self._eps(prob, np.ones(len(prob.cand), dtype=bool))
-        return _loop(prob, solver, lambda p, s, a: cond.step(a, compliance), self._update, active0.copy(),
-                     self.maxiter, finish=cond.full)
+        with blas_threads(1):  # small dense algebra (solvers module docstring)
+            cond = Condensed.build(prob, solver)
+            if cond is not None:
+                with np.errstate(divide="ignore"):
+                    compliance = 1.0 / self._eps(prob, np.ones(len(prob.cand), dtype=bool))
+                return _loop(prob, solver, lambda p, s, a: cond.step(a, compliance), self._update,
+                             active0.copy(), self.maxiter, finish=cond.full)
+        _no_extra(prob)
+        return _loop(prob, solver, _legacy(self._step), self._update, active0.copy(), self.maxiter)
 
     def _eps(self, prob, active):
         return np.where(active, self.beta * prob.E_star * prob.weights / prob.s0, 0.0)

@@ -33,7 +33,7 @@ from coathertz.fem.model import INTORDER, FEModel
 
 
 def _region_basis(model: FEModel, elements: np.ndarray) -> Basis:
-    return Basis(model.lm.mesh, model.basis.elem, intorder=INTORDER, elements=elements)
+    return Basis(model.lm.mesh, model.elem, intorder=INTORDER, elements=elements)
 
 
 def internal_force(model: FEModel, u: np.ndarray, states: list) -> tuple[np.ndarray, list]:
@@ -97,7 +97,7 @@ def solve_incremental(
     weights = model.weights_all[cand]
     x = np.zeros(n)
     grid = model.dof_grid() if linear else None  # condensed contact solve (one factorisation)
-    nq = model.basis.X.shape[-1]
+    nq = model.nq
     states = [reg.law.initial_state((len(reg.elements), nq)) for reg in model.regions]
     active = (r <= r[1]) if active0 is None else active0
     newton_total = contact_total = 0

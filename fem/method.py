@@ -166,8 +166,9 @@ class FEMMethod:
     name = "fem"
 
     #: One factorisation per contact problem (condensed solve, :mod:`coathertz.fem.contact`) and
-    #: the vectorised assembly; False restores the refactorising active-set path and skfem's generic
-    #: assembly (the path before issue 13 item 4, kept for the benchmark's before/after in one run).
+    #: the rectangle-table assembly (:mod:`coathertz.fem.affine`); False restores the refactorising
+    #: active-set path and skfem's generic assembly (the path before issue 13 item 4, kept for the
+    #: benchmark's ``--legacy`` rows).
     _reuse_factorisation: bool = True
 
     def __init__(

@@ -41,6 +41,7 @@ import scipy.sparse.linalg as spla
 
 from coathertz.errors import CoatHertzError, ConvergenceError
 from coathertz.fem.plastic_assembly import BBarAssembler
+from coathertz.fem.solvers import nd_lu
 
 #: Complementarity violations below this (relative to the largest multiplier / the approach) are
 #: round-off: such an edge node does not change the active set (cf. ``contact.CYCLE_TOL``).
@@ -96,6 +97,7 @@ class ContactGeometry:
     vals0: np.ndarray  # essential values at W = 0
     vals_unit: np.ndarray  # d(values)/dW (far field of a unit load)
     a_hint: Callable[[float], float] | None = None  # contact radius guess for a load (first contact)
+    grid: tuple[np.ndarray, np.ndarray] | None = None  # grid node of every dof (nested-dissection LU)
 
 
 def geometry_of(model, g0_fun: Callable[[np.ndarray], np.ndarray],
@@ -107,7 +109,8 @@ def geometry_of(model, g0_fun: Callable[[np.ndarray], np.ndarray],
     fixed0, v0 = model.dirichlet(0.0)
     if not np.array_equal(fixed, fixed0):
         raise CoatHertzError("essential dofs must not depend on the load")
-    return ContactGeometry(cand, r, g0_fun(r), fixed, v0, v1 - v0, a_hint)
+    grid = model.dof_grid() if model.n_dofs == model.n_u else None
+    return ContactGeometry(cand, r, g0_fun(r), fixed, v0, v1 - v0, a_hint, grid)
 
 
 @dataclass
@@ -130,20 +133,25 @@ class PathRecord:
     factorisations: int = 0
 
 
-def _solve_constrained(K, rhs, fixed, vals_list):
-    """Solve ``K u = rhs_k`` with ``u[fixed] = vals_k`` for each ``(rhs_k, vals_k)`` (one LU)."""
+def _solve_constrained(K, rhs, fixed, vals_list, grid=None):
+    """Solve ``K u = rhs_k`` with ``u[fixed] = vals_k`` for each ``(rhs_k, vals_k)`` (one LU, in the
+    nested-dissection order of ``grid`` if given, :func:`coathertz.fem.solvers.nd_lu`; else
+    SuperLU's minimum degree)."""
     n = K.shape[0]
     free = np.ones(n, dtype=bool)
     free[fixed] = False
     Kc = K.tocsc()
     Kff = Kc[free][:, free]
     Kfd = Kc[free][:, fixed]
-    lu = spla.splu(Kff.tocsc(), permc_spec="MMD_AT_PLUS_A", options={"SymmetricMode": True})
+    if grid is not None:
+        solve = nd_lu(Kff, (grid[0][free], grid[1][free]))
+    else:
+        solve = spla.splu(Kff.tocsc(), permc_spec="MMD_AT_PLUS_A", options={"SymmetricMode": True}).solve
     out = []
     for rh, val in zip(rhs, vals_list, strict=True):
         u = np.zeros(n)
         u[fixed] = val
-        u[free] = lu.solve(rh[free] - Kfd @ val)
+        u[free] = solve(rh[free] - Kfd @ val)
         out.append(u)
     return out
 
@@ -189,7 +197,7 @@ class IncrementalContact:
             W = target
             v1 = np.concatenate([g.vals0 + W * g.vals_unit, g.g0[active]])[order]
             v2 = np.concatenate([zf, -np.ones(nA)])[order]
-            u1, u2 = _solve_constrained(K, [rhs, np.zeros_like(rhs)], fixed, [v1, v2])
+            u1, u2 = _solve_constrained(K, [rhs, np.zeros_like(rhs)], fixed, [v1, v2], g.grid)
             self.factorisations += 1
             l1 = (rhs - K @ u1)[A]
             l2 = -(K @ u2)[A]
@@ -200,7 +208,7 @@ class IncrementalContact:
         delta = target
         v1 = np.concatenate([g.vals0, g.g0[active] - delta])[order]
         v3 = np.concatenate([g.vals_unit, np.zeros(nA)])[order]
-        u1, u3 = _solve_constrained(K, [rhs, np.zeros_like(rhs)], fixed, [v1, v3])
+        u1, u3 = _solve_constrained(K, [rhs, np.zeros_like(rhs)], fixed, [v1, v3], g.grid)
         self.factorisations += 1
         l1 = (rhs - K @ u1)[A]
         l3 = -(K @ u3)[A]
