@@ -159,3 +159,21 @@ def test_predictor_uses_the_best_form_and_says_so():
     assert "second closed form" in res.meta["refit_bound"]["text"]
     want = {"a": RULE.bars("elastic", 0.14, 0.12, 0.485, 0.045)["a"][0] * case.normalisers.a0}
     assert res.a == pytest.approx(want["a"], rel=1e-10)
+
+
+def test_p0_has_no_jump_across_the_ring_box_faces():
+    """p0 of the corrected form is max(axis branch, ring branch) inside the ring box only: on the
+    box faces the ring branch must lie below the axis branch, else p0 would jump there."""
+    from coathertz.refit.sweep import RING_BOX
+
+    def f(E, H, nu_c, nu_s):
+        return float(np.log(RULE.corrected_bar("p", E, H, nu_c, nu_s))[0])
+
+    h0, h1 = (10.0**x for x in RING_BOX["log10_H"])
+    e0 = 10.0 ** RING_BOX["log10_E"][0]
+    nus = ((0.0, 0.5), (0.3, 0.3), (0.5, 0.0), (0.49, 0.01), (0.01, 0.49))
+    jumps = [abs(f(E, H * (1 + 1e-12), nc, ns) - f(E, H * (1 - 1e-12), nc, ns))
+             for E in (2.0, 3.0, 6.0, 10.0, 30.0) for H in (h0, h1) for nc, ns in nus]
+    jumps += [abs(f(e0 * (1 + 1e-12), H, nc, ns) - f(e0 * (1 - 1e-12), H, nc, ns))
+              for H in np.linspace(h0, h1, 15) for nc, ns in nus]
+    assert max(jumps) < 1e-6, f"largest jump {max(jumps):.2e}"

@@ -3,7 +3,8 @@
 Two ways in:
 
 * ``--sweep FILE``: refit from an exported sweep (JSON, e.g. the packaged
-  ``coathertz/data/alpha_refit_sweep.json``); no solver runs. This is how the shipped
+  ``coathertz/data/alpha_refit_sweep.json.gz``; gzip-compressed JSON is read and written by the
+  suffix); no solver runs. This is how the shipped
   coefficients are reproduced (``--check`` compares them).
 * otherwise: design the training and validation points, solve them with ``--method``
   (circular; default ``axisym``, the exact axisymmetric method) and the FFT (ellipses) through

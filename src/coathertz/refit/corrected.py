@@ -191,24 +191,40 @@ class CorrectedForm:
     def log_bar(self, q: str, E, H, nu_c=0.3, nu_s=0.3,
                 alpha_model: M.AlphaModel | None = None) -> np.ndarray:
         """``ln bar_q`` (flattened broadcast shape)."""
+        return self.log_bars(E, H, nu_c, nu_s, alpha_model, (q,))[q]
+
+    def log_bars(self, E, H, nu_c=0.3, nu_s=0.3, alpha_model: M.AlphaModel | None = None,
+                 quantities=M.QUANTITIES) -> dict[str, np.ndarray]:
+        """``ln bar_q`` of several quantities at once (the variables and the weights are shared)."""
         E = None if self.config == "rigid" else E
-        base = self.base_log_bar(q, alpha_model, 1.0 if E is None else E, H, nu_c, nu_s)
         X = M.variables(self.config, E, H, nu_c, nu_s)
         Hf = 10.0 ** X[0]
         v = correction_weight(self.config, Hf)
-        out = base + v * self.surfaces[q](X)
-        if q in self.patch:
-            beta = smoothstep((X[1] - BLEND_LOG10_E[0]) / (BLEND_LOG10_E[1] - BLEND_LOG10_E[0]))
-            on = beta > 0
-            if np.any(on):
-                Xp = np.vstack([M.xi_H(Hf[on]), X[1:, on]])
-                patch = base[on] + v[on] * self.patch[q](Xp)
-                out[on] = (1.0 - beta[on]) * out[on] + beta[on] * patch
-        if q in self.ring:
-            inside = in_ring_box(Hf, 10.0 ** X[1])
-            if np.any(inside):
-                ring = base[inside] + self.ring[q](X[:, inside])
-                out[inside] = np.maximum(out[inside], ring)
+        if self.config == "rigid":
+            Eb, nu_sb = None, None
+            nu_cb = np.broadcast_arrays(np.asarray(H, dtype=float), np.asarray(nu_c, dtype=float))[1].ravel()
+        else:
+            Eb = 10.0 ** X[1]
+            _, _, nu_cb, nu_sb = (a.ravel() for a in np.broadcast_arrays(
+                *(np.asarray(x, dtype=float) for x in (E, H, nu_c, nu_s))))
+        out = {}
+        for q in quantities:
+            base = self.base_log_bar(q, alpha_model, Eb, Hf, nu_cb, nu_sb)
+            if q in self.patch:
+                beta = smoothstep((X[1] - BLEND_LOG10_E[0]) / (BLEND_LOG10_E[1] - BLEND_LOG10_E[0]))
+                val = base.copy()
+                glob, on = beta < 1.0, beta > 0.0
+                val[glob] += v[glob] * self.surfaces[q](X[:, glob]) * (1.0 - beta[glob])
+                if np.any(on):
+                    Xp = np.vstack([M.xi_H(Hf[on]), X[1:, on]])
+                    val[on] += v[on] * self.patch[q](Xp) * beta[on]
+            else:
+                val = base + v * self.surfaces[q](X)
+            if q in self.ring:
+                inside = in_ring_box(Hf, 10.0 ** X[1])
+                if np.any(inside):
+                    val[inside] = np.maximum(val[inside], base[inside] + self.ring[q](X[:, inside]))
+            out[q] = val
         return out
 
     def to_dict(self) -> dict:

@@ -135,7 +135,8 @@ class RefitRule:
     def bars(self, config: str, E=None, H=1.0, nu_c=0.3, nu_s=0.3) -> dict[str, np.ndarray]:
         """Bars of a, delta, p of the best form of ``config`` (vectorised, flattened)."""
         if self.best_form(config) == "corrected":
-            return {q: self.corrected_bar(q, E, H, nu_c, nu_s, config) for q in M.QUANTITIES}
+            form = self._corrected[config]  # type: ignore[attr-defined]
+            return {q: np.exp(v) for q, v in form.log_bars(E, H, nu_c, nu_s, self.model(config)).items()}
         return self.model(config).bars(E, H, nu_c, nu_s)
 
     # -- bounds ------------------------------------------------------------------------
