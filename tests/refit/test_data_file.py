@@ -104,13 +104,11 @@ def test_validated_bound_meets_the_goal_and_rechecks_against_the_exact_method():
                 assert b[f"{q}_bar"] == pytest.approx(float(va[f"{q}_bar"][i]), rel=1e-9), (cfg, q, p)
                 err = 100 * abs(pred[q][0] / b[f"{q}_bar"] - 1)
                 assert err <= stats[q]["max"] * (1 + 1e-9), (cfg, q, p, err)
-    # Ellipses: the goal of 1 % is NOT met for r_b and p0 (data file: about 1.6 % and 3.3 %; the
-    # report says where). What is asserted: r_a and delta meet it, and every quantity is at least
-    # twice as accurate as the paper's eq (21) on the same validation points.
+    # Ellipses (against the FFT at n = 128, whose own error is ~0.13 % on the semi-axes): the goal
+    # on every quantity, and far better than the paper's eq (21) on the same validation points.
     ve, pe = rule.data["validation_error"]["ellipse"], rule.data["paper_error"]["ellipse"]
-    for q in ("r_a", "delta"):
-        assert ve[q]["max"] <= GOAL["ellipse"], f"ellipse {q}: validated max |error| {ve[q]['max']:.3f} %"
     for q, v in ve.items():
+        assert v["max"] <= GOAL["ellipse"], f"ellipse {q}: validated max |error| {v['max']:.3f} %"
         assert v["max"] <= 0.5 * pe[q]["max"], (q, v["max"], pe[q]["max"])
 
 

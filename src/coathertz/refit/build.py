@@ -33,7 +33,7 @@ NU_MATCHED = 0.1
 DEFAULT_SETTINGS = {
     "elastic": FitSettings((8, 6, 4), ((4, 3),), reweight=0, iterations=20),
     "rigid": FitSettings((12, 8), (), reweight=0),
-    "ellipse": FitSettings((6, 4, 3), ((4, 3),), ridge=1e-10, reweight=0),
+    "ellipse": FitSettings((16, 3, 2), ((16, 3),), ridge=1e-8, reweight=0),
     "corrected_elastic": FitSettings((24, 12, 10)),
     "corrected_elastic_patch": FitSettings((40, 8, 8)),
     "corrected_elastic_ring": FitSettings((16, 8, 8)),
