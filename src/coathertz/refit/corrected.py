@@ -32,7 +32,7 @@ import numpy as np
 from coathertz.errors import CoatHertzError
 from coathertz.refit import model as M
 from coathertz.refit.fit import FitSettings, error_stats
-from coathertz.refit.surface import Surface, chebyshev_table, term_set
+from coathertz.refit.surface import Surface, chebyshev_table, evaluate_shared, term_set
 
 
 def weight(H) -> np.ndarray:
@@ -207,6 +207,9 @@ class CorrectedForm:
             Eb = 10.0 ** X[1]
             _, _, nu_cb, nu_sb = (a.ravel() for a in np.broadcast_arrays(
                 *(np.asarray(x, dtype=float) for x in (E, H, nu_c, nu_s))))
+        plain = [q for q in quantities if q not in self.patch]
+        shared = (dict(zip(plain, evaluate_shared([self.surfaces[q] for q in plain], X), strict=True))
+                  if plain else {})
         out = {}
         for q in quantities:
             base = self.base_log_bar(q, alpha_model, Eb, Hf, nu_cb, nu_sb)
@@ -219,7 +222,7 @@ class CorrectedForm:
                     Xp = np.vstack([M.xi_H(Hf[on]), X[1:, on]])
                     val[on] += v[on] * self.patch[q](Xp) * beta[on]
             else:
-                val = base + v * self.surfaces[q](X)
+                val = base + v * shared[q]
             if q in self.ring:
                 inside = in_ring_box(Hf, 10.0 ** X[1])
                 if np.any(inside):

@@ -196,3 +196,45 @@ class Surface:
     def from_dict(cls, d: dict) -> Surface:
         return cls(tuple(d["variables"]), tuple(map(float, d["lo"])), tuple(map(float, d["hi"])),
                    tuple(tuple(int(i) for i in t) for t in d["terms"]), tuple(map(float, d["coef"])))
+
+
+def evaluate_shared(surfaces: Sequence[Surface], X: np.ndarray) -> list[np.ndarray]:
+    """Values of several surfaces with the same variables, ranges and terms at the points ``X``:
+    the Chebyshev tables are built once and one matrix product serves all of them (the fast path
+    of the corrected form, whose a, delta and p surfaces share their terms)."""
+    first = surfaces[0]
+    if any((s.variables, s.lo, s.hi, s.terms) != (first.variables, first.lo, first.hi, first.terms)
+           for s in surfaces[1:]):
+        return [s(X) for s in surfaces]
+    X = np.asarray(X, dtype=float)
+    d, n = X.shape
+    degs = first.degrees
+    stacks = [s._stacked for s in surfaces]
+    big = np.vstack([b for b, _ in stacks])
+    rows = stacks[0][0].shape[0]
+    index = stacks[0][1]
+    outs = [np.empty(n) for _ in surfaces]
+    chunk = int(min(CHUNK, max(2048, 2**21 // big.shape[0])))
+    for s0 in range(0, n, chunk):
+        S = first.scaled(X[:, s0 : s0 + chunk])
+        tabs = [chebyshev_table(S[v], degs[v]) for v in range(d)]
+        if d == 1:
+            tabs.append(np.ones((1, S.shape[1])))
+        tails = {}
+        for tail, _, _ in index:
+            f = None
+            for v, k in enumerate(tail, start=2):
+                if k:
+                    f = tabs[v][k] if f is None else f * tabs[v][k]
+            tails[tail] = f
+        B = big[:, : tabs[0].shape[0]] @ tabs[0]
+        for m, out in enumerate(outs):
+            acc = np.zeros(S.shape[1])
+            for tail, r0, nr in index:
+                r = m * rows + r0
+                val = np.einsum("jn,jn->n", B[r : r + nr], tabs[1][:nr]) if nr > 1 else B[r].copy()
+                if tails[tail] is not None:
+                    val *= tails[tail]
+                acc += val
+            out[s0 : s0 + chunk] = acc
+    return outs
