@@ -36,7 +36,7 @@ DEFAULT_SETTINGS = {
     "ellipse": FitSettings((16, 3, 2), ((16, 3),), ridge=1e-8, reweight=0),
     "corrected_elastic": FitSettings((24, 12, 10)),
     "corrected_elastic_patch": FitSettings((40, 8, 8)),
-    "corrected_elastic_ring": FitSettings((16, 8, 8)),
+    "corrected_elastic_ring": FitSettings((20, 10, 10)),
     "corrected_rigid": FitSettings((24, 16), (), ridge=1e-12, reweight=0),  # full tensor
 }
 
