@@ -142,7 +142,8 @@ def solve_sweep(args) -> tuple[dict, dict]:
             pts = (S.design_grid_rigid(rshape) + S.design_random("rigid", args.valid_rigid, 2)  # type: ignore[arg-type]
                    + S.design_random("rigid", args.valid_rigid_spread, 3, spread_nu=True))
         else:
-            pts = S.design(cfg, args.train_ellipse) + S.design(cfg, args.valid_ellipse, "valid")
+            pts = (S.design(cfg, args.train_ellipse) + S.design(cfg, args.valid_ellipse, "valid")
+                   + S.design_faces_ellipse())
         t0 = time.perf_counter()
         with ResultStore(args.store, version=S.method_code_version(m)) as store:
             tab = S.collect(pts, m, store, workers=args.workers, progress=True, desc=f"refit {cfg}")

@@ -439,3 +439,28 @@ def add_axis_and_ring(table: dict[str, list]) -> int:
         table["p_axis_bar"][i] = got["p_axis_bar"][j]
         table["p_ring_bar"][i] = got["p_ring_bar"][j]
     return len(rows)
+
+
+def design_faces_ellipse(n_H: int = 13, n_other: int = 9, n_valid: int = 40) -> list[Point]:
+    """Points on the faces of the ellipse box where the correction does not vanish: Rx/Ry = 10 and
+    E = 1/4, E = 4. Training: Chebyshev--Lobatto grids (``n_H`` in log10 H times ``n_other`` in the
+    other free variable); validation: ``n_valid`` Sobol points per face. A polynomial fitted to
+    interior points is least constrained on the faces (a random validation set seldom reaches them)."""
+    box = BOX["ellipse"]
+    faces = (("log10_rho", box["log10_rho"][1]), ("log10_E", box["log10_E"][0]),
+             ("log10_E", box["log10_E"][1]))
+    pts = []
+    for k, (fixed, value) in enumerate(faces):
+        free = "log10_E" if fixed == "log10_rho" else "log10_rho"
+        sub = {"log10_H": box["log10_H"], free: box[free]}
+        grid = [(h, x) for x in lobatto(n_other, *sub[free]) for h in lobatto(n_H, *sub["log10_H"])]
+        rand = [(p.H, p.E if free == "log10_E" else p.rho)
+                for p in design("ellipse", n_valid, "valid", seed=10 + k, box=sub)]
+        for which, rows in (("train", [(10.0**h, 10.0**x) for h, x in grid]), ("valid", rand)):
+            for H, x in rows:
+                v = {fixed: 10.0**value, free: x}
+                E = v.get("log10_E", 1.0)
+                rho = v.get("log10_rho", 1.0)
+                pts.append(Point("ellipse", round(float(E), 10), round(float(H), 10), 0.3, 0.3,
+                                 round(float(rho), 10), which))
+    return pts
