@@ -95,5 +95,5 @@ class ClosedFormMethod:
             meta["refit_bound"] = {"config": bound.config, "max_abs_err_percent": dict(bound.values),
                                    "region": bound.region, "n_validation": bound.n_points,
                                    "in_range": bound.in_range, "notes": list(bound.notes),
-                                   "text": bound.describe()}
+                                   "form": bound.form, "text": bound.describe()}
         return ContactResult(self.name, pred.delta, pred.a, pred.p0, case.W, pred.r_a, pred.r_b, meta)

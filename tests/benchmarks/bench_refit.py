@@ -43,22 +43,27 @@ def main(argv=None) -> int:
     rng = np.random.default_rng(0)
     E = 10 ** rng.uniform(-1, 1, n)
     H = 10 ** rng.uniform(-3, 1, n)
-    nu_c = rng.uniform(0, 0.49, n)
-    nu_s = rng.uniform(0, 0.49, n)
+    nu_c = rng.uniform(0, 0.5, n)
+    nu_s = rng.uniform(0, 0.5, n)
     rho = 10 ** rng.uniform(0, 1, n)
     rule = load()
     el, rg = rule.model("elastic"), rule.model("rigid")
+    rule.bars("elastic", E[:10], H[:10], nu_c[:10], nu_s[:10])  # build the cached evaluation tables
     surfs = rule.ellipse_surfaces()
-    print(f"machine: {platform.processor() or platform.machine()}, {os.cpu_count()} cores (shared), "
-          f"numpy {np.__version__}; n = {n}, best of {args.repeat}")
+    print(f"machine: {platform.processor() or platform.machine()}, {os.cpu_count()} cores (shared, load "
+          f"{os.getloadavg()[0]:.2f}), numpy {np.__version__}; n = {n}, best of {args.repeat}")
     rows = []
     t = best(lambda: el.bars(E, H, nu_c, nu_s), args.repeat)
-    rows.append(("refit, elastic substrate (a, delta, p)", t))
+    rows.append(("refit one alpha, elastic (a, delta, p)", t))
+    t = best(lambda: rule.bars("elastic", E, H, nu_c, nu_s), args.repeat)
+    rows.append((f"refit {rule.best_form('elastic')}, elastic (a, delta, p)", t))
     t = best(lambda: rg.bars(None, H, nu_c), args.repeat)
-    rows.append(("refit, rigid substrate (a, delta, p)", t))
+    rows.append(("refit one alpha, rigid (a, delta, p)", t))
+    t = best(lambda: rule.bars("rigid", None, H, nu_c), args.repeat)
+    rows.append((f"refit {rule.best_form('rigid')}, rigid (a, delta, p)", t))
 
     def ell():
-        b = el.bars(E, H, nu_c, nu_s)
+        b = rule.bars("elastic", E, H, nu_c, nu_s)
         return {q: b[EL.BASE[q]] * np.exp(EL.log_correction(surfs, q, E, H, rho)) for q in EL.QUANTITIES}
 
     t = best(ell, args.repeat)
@@ -75,8 +80,8 @@ def main(argv=None) -> int:
     ref = rows[-1][1]
     for name, t in rows:
         print(f"{name:42s} {t:7.3f} s  {n / t:12.3e} cases/s  ({t / ref:.2f} x the paper's rule)")
-    ok = n / rows[0][1] >= 1e6
-    print(f"goal >= 1e6 cases/s (elastic, all three quantities): {'met' if ok else 'NOT met'}")
+    ok = n / rows[1][1] >= 1e6
+    print(f"goal >= 1e6 cases/s (elastic, best form, all three quantities): {'met' if ok else 'NOT met'}")
     return 0
 
 

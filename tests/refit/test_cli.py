@@ -12,7 +12,8 @@ def test_predict_refit_prints_rule_and_bound(capsys):
                  "--coating", "380 GPa,0.17,40 um", "--alpha-rule", "refit"]) == 0
     out = capsys.readouterr().out
     assert "alpha (refit)" in out
-    assert "refit rule (elastic): validated max |error|" in out and "inside the validated range" in out
+    assert "refit rule (elastic, second closed form: eqs 17-18 x smooth correction factor): validated max " \
+           "|error|" in out and "inside the validated range" in out
     assert "warning:" not in out
 
 
@@ -27,6 +28,6 @@ def test_predict_refit_json_and_out_of_range_warning(capsys):
 
 def test_predict_refit_ellipse_and_rigid(capsys):
     assert main(["predict", "example:elliptical_fig10", "--alpha-rule", "refit"]) == 0
-    assert "refit rule (ellipse)" in capsys.readouterr().out
+    assert "refit rule (ellipse, " in capsys.readouterr().out
     assert main(["predict", "example:rigid_substrate", "--alpha-rule", "refit"]) == 0
-    assert "refit rule (rigid)" in capsys.readouterr().out
+    assert "refit rule (rigid, " in capsys.readouterr().out

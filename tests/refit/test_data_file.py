@@ -9,7 +9,9 @@
 
 from __future__ import annotations
 
+import dataclasses
 import json
+import warnings
 from importlib import resources
 from pathlib import Path
 
@@ -18,9 +20,10 @@ import pytest
 
 from coathertz.cli import main
 from coathertz.cli.fit_alpha import compare, load_sweep
+from coathertz.methods import get_method
 from coathertz.refit import load
 from coathertz.refit.build import build
-from coathertz.refit.sweep import select, table_hash
+from coathertz.refit.sweep import Point, bars_of, make_case, select, table_hash
 
 HERE = Path(__file__).parent / "data"
 DATA = resources.files("coathertz") / "data"
@@ -51,7 +54,7 @@ def test_check_detects_a_different_file(tmp_path, capsys):
 
 def test_shipped_file_was_fitted_from_shipped_sweep():
     rule = load()
-    cols, _ = load_sweep(Path(str(DATA / "alpha_refit_sweep.json")))
+    cols, _ = load_sweep(Path(str(DATA / "alpha_refit_sweep.json.gz")))
     assert rule.data["provenance"]["sweep_sha256"] == table_hash(cols)
     for key in ("code_version", "circular_method", "ellipse_method", "command"):
         assert key in rule.data["provenance"], key
@@ -62,10 +65,55 @@ def test_shipped_file_was_fitted_from_shipped_sweep():
         for q in ("a", "delta", "p"):
             err = 100 * np.abs(m.bar(q, va["E"], va["H"], va["nu_c"], va["nu_s"]) / va[f"{q}_bar"] - 1)
             assert float(err.max()) == pytest.approx(rule.data["validation_error"][cfg][q]["max"], rel=1e-9)
+            err = 100 * np.abs(rule.corrected_bar(q, va["E"], va["H"], va["nu_c"], va["nu_s"], config=cfg)
+                               / va[f"{q}_bar"] - 1)
+            stored = rule.data["corrected"][cfg]["validation_error"][q]["max"]
+            assert float(err.max()) == pytest.approx(stored, rel=1e-9)
+
+
+#: The goals of issue 10 [%]: circular (elastic and rigid substrate) and elliptical.
+GOAL = {"elastic": 0.3, "rigid": 0.3, "ellipse": 1.0}
+
+
+def test_validated_bound_meets_the_goal_and_rechecks_against_the_exact_method():
+    """The best form's max |error| on the validation set (read from the data file) is within the
+    goal, and a random subset of validation points re-solved now by the exact method gives the
+    stored bars (so the stored errors are errors against the exact method) and errors within the
+    stored bound."""
+    rule = load()
+    cols, _ = load_sweep(Path(str(DATA / "alpha_refit_sweep.json.gz")))
+    rng = np.random.default_rng(7)
+    exact = get_method("axisym", keep_fields=False)
+    for cfg in ("elastic", "rigid"):
+        form = rule.best_form(cfg)
+        stats = (rule.data["corrected"][cfg] if form == "corrected" else rule.data)["validation_error"]
+        stats = stats if form == "corrected" else stats[cfg]
+        worst = max(v["max"] for v in stats.values())
+        assert worst <= GOAL[cfg], f"{cfg} ({form}): validated max |error| {worst:.3f} % > {GOAL[cfg]} %"
+        va = select(cols, config=cfg, set="valid")
+        fast = np.flatnonzero(va["H"] >= 0.01)  # thin coatings cost the exact method ~0.5 s each
+        for i in rng.choice(fast, size=4, replace=False):
+            p = Point(cfg, float(va["E"][i]), float(va["H"][i]), float(va["nu_c"][i]), float(va["nu_s"][i]))
+            case = make_case(p)
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                res = exact.solve(case)
+            b = bars_of(p, case, dataclasses.asdict(res))
+            pred = rule.bars(cfg, p.E, p.H, p.nu_c, p.nu_s)
+            for q in ("a", "delta", "p"):
+                assert b[f"{q}_bar"] == pytest.approx(float(va[f"{q}_bar"][i]), rel=1e-9), (cfg, q, p)
+                err = 100 * abs(pred[q][0] / b[f"{q}_bar"] - 1)
+                assert err <= stats[q]["max"] * (1 + 1e-9), (cfg, q, p, err)
+    # Ellipses (against the FFT at n = 128, whose own error is ~0.13 % on the semi-axes): the goal
+    # on every quantity, and far better than the paper's eq (21) on the same validation points.
+    ve, pe = rule.data["validation_error"]["ellipse"], rule.data["paper_error"]["ellipse"]
+    for q, v in ve.items():
+        assert v["max"] <= GOAL["ellipse"], f"ellipse {q}: validated max |error| {v['max']:.3f} %"
+        assert v["max"] <= 0.5 * pe[q]["max"], (q, v["max"], pe[q]["max"])
 
 
 @pytest.mark.slow
 def test_full_refit_reproduces_shipped_file():
-    cols, prov = load_sweep(Path(str(DATA / "alpha_refit_sweep.json")))
+    cols, prov = load_sweep(Path(str(DATA / "alpha_refit_sweep.json.gz")))
     new = build(cols, provenance=prov)
     assert compare(new, load().data) < 1e-6

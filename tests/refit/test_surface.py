@@ -43,3 +43,12 @@ def test_round_trip_and_validation():
         Surface(("x",), (1.0,), (0.0,), ((0,),), (1.0,))
     with pytest.raises(CoatHertzError, match="shape"):
         s(np.zeros((3, 4)))
+
+
+def test_shared_evaluation_equals_one_by_one():
+    from coathertz.refit.surface import evaluate_shared
+
+    ss = [_surface(seed) for seed in range(3)]
+    X = np.random.default_rng(2).uniform([-4, -1.5, 0, 0], [2, 1.5, 0.5, 0.5], size=(70001, 4)).T
+    for got, s in zip(evaluate_shared(ss, X), ss, strict=True):
+        np.testing.assert_allclose(got, s(X), rtol=1e-12, atol=1e-12)

@@ -3,7 +3,8 @@
 Two ways in:
 
 * ``--sweep FILE``: refit from an exported sweep (JSON, e.g. the packaged
-  ``coathertz/data/alpha_refit_sweep.json``); no solver runs. This is how the shipped
+  ``coathertz/data/alpha_refit_sweep.json.gz``; gzip-compressed JSON is read and written by the
+  suffix); no solver runs. This is how the shipped
   coefficients are reproduced (``--check`` compares them).
 * otherwise: design the training and validation points, solve them with ``--method``
   (circular; default ``axisym``, the exact axisymmetric method) and the FFT (ellipses) through
@@ -32,16 +33,26 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--ellipse-n", type=int, default=128, help="FFT grid (n x n) for the ellipse sweep")
     parser.add_argument("--store", type=Path, default=Path("runs/refit/store.sqlite"),
                         help="result store of the sweeps (default runs/refit/store.sqlite)")
-    for cfg, tr, va in (("elastic", 2000, 600), ("rigid", 400, 200), ("ellipse", 250, 120)):
-        parser.add_argument(f"--train-{cfg}", type=int, default=tr, help=f"{cfg} training points (+3^d box)")
-        parser.add_argument(f"--valid-{cfg}", type=int, default=va, help=f"{cfg} validation points")
-    for cfg, n in (("elastic", 24),):
-        parser.add_argument(f"--thin-valid-{cfg}", type=int, default=n,
-                            help=f"{cfg} validation points in the thin band H in [0.001, 0.01)")
-    parser.add_argument("--rigid-nu-lines", default="0.47,0.49,0.5",
-                        help="extra rigid-substrate lines at these nu_c (training; validation lines at "
-                             "their midpoints in H), since Sobol points leave nu_c -> 0.5 sparse")
-    parser.add_argument("--line-points", type=int, default=25, help="H values per nu_c line")
+    parser.add_argument("--elastic-grid", default="33,17,17",
+                        help="elastic training grid: Chebyshev-Lobatto nodes in log10 H, log10 E and "
+                             "Dundurs' "
+                             "s (coathertz.refit.reduced; default 33,17,17)")
+    parser.add_argument("--rigid-grid", default="65,33",
+                        help="rigid-substrate training grid: nodes in log10 H and t(nu_c) (default 65,33)")
+    parser.add_argument("--valid-elastic", type=int, default=1500,
+                        help="elastic validation points (Sobol in log10 H, log10 E, nu_c, nu_s)")
+    parser.add_argument("--valid-ring", type=int, default=300,
+                        help="further elastic validation points where the peak pressure may leave the axis "
+                             "(sweep.RING_BOX)")
+    parser.add_argument("--valid-rigid", type=int, default=300,
+                        help="rigid validation points (Sobol, uniform in nu_c)")
+    parser.add_argument("--valid-rigid-spread", type=int, default=200,
+                        help="further rigid validation points uniform in t(nu_c) (dense towards nu_c = 0.5)")
+    parser.add_argument("--train-ellipse", type=int, default=250, help="ellipse training points (+3^d box)")
+    parser.add_argument("--valid-ellipse", type=int, default=120, help="ellipse validation points")
+    parser.add_argument("--fallback-settings", default='{"rtol": 1e-10}',
+                        help="JSON settings of --method for a second try of cases that fail (the load "
+                             "iteration can stall at ~1e-12, just above the default rtol)")
     parser.add_argument("--reuse-sweep", action="append", default=[], metavar="FILE:CONFIG[,CONFIG]",
                         help="take the rows of these configurations from an exported sweep instead of "
                              "solving (e.g. runs/refit/fft128_sweep.json:ellipse)")
@@ -60,10 +71,18 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="compare the fitted coefficients with this data file; exit 1 if they differ")
 
 
+def _read_text(path: Path) -> str:
+    if path.suffix == ".gz":
+        import gzip
+
+        return gzip.decompress(path.read_bytes()).decode()
+    return path.read_text()
+
+
 def load_sweep(path: Path) -> tuple[dict, dict]:
     from coathertz.errors import CoatHertzError
 
-    d = json.loads(Path(path).read_text())
+    d = json.loads(_read_text(Path(path)))
     if d.get("format") != SWEEP_FORMAT:
         raise CoatHertzError(f"{path}: not a refit sweep (format {d.get('format')!r}, "
                              f"expected {SWEEP_FORMAT!r})")
@@ -81,8 +100,14 @@ def export_sweep(path: Path, table: dict, provenance: dict) -> None:
 
     cols = {k: [clean(v) for v in col] for k, col in table.items() if k != "failed"}
     Path(path).parent.mkdir(parents=True, exist_ok=True)
-    Path(path).write_text(json.dumps({"format": SWEEP_FORMAT, "provenance": provenance, "columns": cols},
-                                     separators=(",", ":")))
+    text = json.dumps({"format": SWEEP_FORMAT, "provenance": provenance, "columns": cols},
+                      separators=(",", ":"))
+    if Path(path).suffix == ".gz":
+        import gzip
+
+        Path(path).write_bytes(gzip.compress(text.encode(), mtime=0))
+    else:
+        Path(path).write_text(text)
 
 
 def solve_sweep(args) -> tuple[dict, dict]:
@@ -93,7 +118,7 @@ def solve_sweep(args) -> tuple[dict, dict]:
     settings = json.loads(args.method_settings)
     circ = get_method(args.method, **settings)
     ell = get_method("fft", n=args.ellipse_n, keep_fields=False, workers=1)
-    tables, times, reused = [], {}, {}
+    tables, times, reused, fallback = [], {}, {}, {}
     for spec in args.reuse_sweep:
         path, _, cfgs = spec.rpartition(":")
         cols, prov = load_sweep(Path(path))
@@ -108,17 +133,34 @@ def solve_sweep(args) -> tuple[dict, dict]:
     plan = [(c, m) for c, m in (("elastic", circ), ("rigid", circ), ("ellipse", ell))
             if c not in reused and c in wanted]
     for cfg, m in plan:
-        pts = (S.design(cfg, getattr(args, f"train_{cfg}"))
-               + S.design(cfg, getattr(args, f"valid_{cfg}"), "valid"))
-        if cfg == "rigid" and args.rigid_nu_lines:
-            nus = [float(x) for x in args.rigid_nu_lines.split(",")]
-            pts += S.design_lines(cfg, nus, args.line_points) + S.design_lines(
-                cfg, nus, args.line_points - 1, "valid", offset=0.5)
-        if cfg in S.THIN:
-            pts += S.design(cfg, getattr(args, f"thin_valid_{cfg}"), "valid", seed=3, box=S.THIN[cfg])
+        if cfg == "elastic":
+            eshape = tuple(int(x) for x in args.elastic_grid.split(","))
+            pts = (S.design_grid_elastic(eshape) + S.design_random("elastic", args.valid_elastic, 2)  # type: ignore[arg-type]
+                   + S.design_random_ring(args.valid_ring) + S.design_grid_patch() + S.design_grid_ring())
+        elif cfg == "rigid":
+            rshape = tuple(int(x) for x in args.rigid_grid.split(","))
+            pts = (S.design_grid_rigid(rshape) + S.design_random("rigid", args.valid_rigid, 2)  # type: ignore[arg-type]
+                   + S.design_random("rigid", args.valid_rigid_spread, 3, spread_nu=True))
+        else:
+            pts = (S.design(cfg, args.train_ellipse) + S.design(cfg, args.valid_ellipse, "valid")
+                   + S.design_faces_ellipse())
         t0 = time.perf_counter()
         with ResultStore(args.store, version=S.method_code_version(m)) as store:
             tab = S.collect(pts, m, store, workers=args.workers, progress=True, desc=f"refit {cfg}")
+        if tab["failed"] and cfg != "ellipse":
+            fb = get_method(args.method, **{**settings, **json.loads(args.fallback_settings)})
+            again = [S.Point(**f["point"]) for f in tab["failed"]]
+            with ResultStore(args.store, version=S.method_code_version(fb)) as store:
+                tab2 = S.collect(again, fb, store, workers=args.workers, desc=f"refit {cfg} (fallback)")
+            fallback[cfg] = {"settings": dict(fb.settings()), "cases": len(again),
+                             "solved": len(again) - len(tab2["failed"]),
+                             "first_error": tab["failed"][0]["error"]}
+            for k in tab:
+                if k != "failed":
+                    tab[k] += tab2[k]
+            tab["failed"] = tab2["failed"]
+        if cfg == "elastic":
+            S.add_axis_and_ring(tab)
         times[cfg] = round(time.perf_counter() - t0, 1)
         if tab["failed"]:
             print(f"fit-alpha: {len(tab['failed'])} {cfg} case(s) failed and are left out; first: "
@@ -136,6 +178,7 @@ def solve_sweep(args) -> tuple[dict, dict]:
         "circular_method": {"name": circ.name, "settings": dict(circ.settings())},
         "ellipse_method": {"name": ell.name, "settings": dict(ell.settings())},
         "solve_seconds": times,
+        "fallback": fallback,
         "reused": reused,
         "created_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
         "store": str(args.store),
@@ -169,9 +212,9 @@ def compare(new: dict, old: dict) -> float:
             x = ma.alpha(q, E, H, nu, 0.3) if cfg == "elastic" else ma.alpha(q, None, H, nu)
             y = mb.alpha(q, E, H, nu, 0.3) if cfg == "elastic" else mb.alpha(q, None, H, nu)
             worst = max(worst, float(np.max(np.abs(x / y - 1))))
-    for key in ("direct", "corrected"):  # the second forms: coefficients
-        for q, sd in new.get(key, {}).get("surfaces", {}).items():
-            od = old.get(key, {}).get("surfaces", {}).get(q)
+    for cfg, v in new.get("corrected", {}).items():  # the corrected forms: coefficients
+        for q, sd in v.get("surfaces", {}).items():
+            od = old.get("corrected", {}).get(cfg, {}).get("surfaces", {}).get(q)
             if od is None or len(od["coef"]) != len(sd["coef"]):
                 return float("inf")
             c1, c2 = np.asarray(sd["coef"]), np.asarray(od["coef"])
@@ -191,7 +234,11 @@ def run(args: argparse.Namespace) -> int:
             export_sweep(args.export_sweep, table, prov)
             print(f"sweep written to {args.export_sweep} ({len(table['H'])} points)")
     prov["command"] = "coathertz fit-alpha " + " ".join(sys.argv[2:]) if sys.argv[1:2] == [NAME] else NAME
-    data = build(table, provenance=prov)
+    from coathertz.refit.fit import FitSettings
+
+    # a sweep may carry its own fit settings (the small test fixture does: fewer terms for fewer rows)
+    settings = {k: FitSettings.from_dict(v) for k, v in prov.get("fit_settings", {}).items()}
+    data = build(table, provenance=prov, settings=settings)
     if args.spot_check:
         from coathertz.methods import get_method
         from coathertz.refit import sweep as S
@@ -227,14 +274,17 @@ def summary(data: dict) -> str:
             f = data["fit_error"][cfg][q]
             rows.append([cfg, q, str(v["n"]), f"{f['max']:.3f}", f"{v['max']:.3f}", f"{v['p99']:.3f}",
                          f"{p.get('max', float('nan')):.2f}", f"{p.get('p99', float('nan')):.2f}"])
-    for key, label in (("direct", "elastic (direct form)"), ("corrected", "elastic (corrected alpha)")):
-        for q, v in data.get(key, {}).get("validation_error", {}).items():
-            f = data[key]["fit_error"][q]
-            rows.append([label, q, str(v["n"]), f"{f['max']:.3f}", f"{v['max']:.3f}", f"{v['p99']:.3f}",
-                         "", ""])
+    for cfg, v in data.get("corrected", {}).items():
+        for q, e in v.get("validation_error", {}).items():
+            f = v["fit_error"][q]
+            rows.append([f"{cfg} (corrected)", q, str(e["n"]), f"{f['max']:.3f}", f"{e['max']:.3f}",
+                         f"{e['p99']:.3f}", "", ""])
     head = ["config", "quantity", "n valid", "train max %", "valid max %", "valid p99 %",
             "paper max %", "paper p99 %"]
     text = format_table(head, rows)
+    best = data.get("best_form", {})
+    if best:
+        text += "\nform used by the predictor: " + ", ".join(f"{c} {f}" for c, f in best.items())
     floors = []
     for cfg, qs in data.get("single_alpha_floor", {}).items():
         for q, v in qs.items():

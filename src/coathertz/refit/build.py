@@ -18,23 +18,26 @@ from collections.abc import Mapping
 import numpy as np
 
 from coathertz.alpha import ELLIPTICAL_RULE, PAPER_RULE, alpha_rigid
-from coathertz.refit import direct as DI
+from coathertz.errors import CoatHertzError
+from coathertz.refit import corrected as CO
 from coathertz.refit import ellipse as EL
 from coathertz.refit import model as M
 from coathertz.refit.fit import FitSettings, error_stats, fit_surface, single_alpha_floor
 from coathertz.refit.surface import Surface, term_set
 from coathertz.refit.sweep import select, table_hash
 
-FORMAT = "coathertz-alpha-refit/1"
+FORMAT = "coathertz-alpha-refit/2"
 #: |nu_c - nu_s| of the "matched Poisson's ratios" validation subset reported separately.
 NU_MATCHED = 0.1
 
 DEFAULT_SETTINGS = {
-    "elastic": FitSettings((7, 5, 2, 2), ((3, 2), (3, 2)), reweight=0),
+    "elastic": FitSettings((8, 6, 4), ((4, 3),), reweight=0, iterations=20),
     "rigid": FitSettings((12, 8), (), reweight=0),
-    "ellipse": FitSettings((4, 3, 2), ((2, 2),), reweight=0),
-    "direct": FitSettings((7, 5, 2, 2), ((3, 2), (3, 2)), ridge=1e-10),
-    "corrected": FitSettings((9, 6, 3, 3), ((4, 3), (4, 3)), ridge=1e-9),
+    "ellipse": FitSettings((16, 3, 2), ((16, 3),), ridge=1e-8, reweight=0),
+    "corrected_elastic": FitSettings((24, 12, 10)),
+    "corrected_elastic_patch": FitSettings((40, 8, 8)),
+    "corrected_elastic_ring": FitSettings((20, 10, 10)),
+    "corrected_rigid": FitSettings((24, 16), (), ridge=1e-12, reweight=0),  # full tensor
 }
 
 #: Bin edges of the validated error table, per configuration: (variable, edges).
@@ -98,43 +101,141 @@ def _circ_errs(model: M.AlphaModel, cols) -> dict[str, np.ndarray]:
             for q in M.QUANTITIES}
 
 
-def ellipse_bars(elastic: M.AlphaModel, surfaces: Mapping[str, Surface], q: str, cols) -> np.ndarray:
-    base = elastic.bar(EL.BASE[q], cols["E"], cols["H"], cols["nu_c"], cols["nu_s"])
+def ellipse_base(elastic: M.AlphaModel, corrected: CO.CorrectedForm | None, q: str, cols) -> np.ndarray:
+    """Circular bars of the base quantity of elliptical ``q`` (``a`` for both semi-axes): the
+    corrected form where given, else the one-alpha refit."""
+    b = EL.BASE[q]
+    if corrected is not None:
+        return np.exp(corrected.log_bar(b, cols["E"], cols["H"], cols["nu_c"], cols["nu_s"], elastic))
+    return elastic.bar(b, cols["E"], cols["H"], cols["nu_c"], cols["nu_s"])
+
+
+def ellipse_bars(elastic: M.AlphaModel, corrected: CO.CorrectedForm | None,
+                 surfaces: Mapping[str, Surface], q: str, cols) -> np.ndarray:
+    base = ellipse_base(elastic, corrected, q, cols)
     return base * np.exp(EL.log_correction(dict(surfaces), q, cols["E"], cols["H"], cols["rho"]))
+
+
+def _p_axis(cols) -> np.ndarray:
+    """The axis branch of p0 (the largest pressure on ``r <= RING_RHO a``): p0 where the peak is
+    there, else the ``p_axis_bar`` column."""
+    from coathertz.refit.sweep import RING_RHO
+
+    ring = np.asarray(cols["r_p0_bar"], dtype=float) > RING_RHO
+    axis = np.asarray(cols.get("p_axis_bar", np.full(len(ring), np.nan)), dtype=float)
+    out = np.where(ring, axis, np.asarray(cols["p_bar"], dtype=float))
+    if not np.all(np.isfinite(out)):
+        raise CoatHertzError("sweep: rows with the peak off the axis need the p_axis_bar column "
+                             "(sweep.axis_and_ring)")
+    return out
+
+
+def fit_corrected_form(config: str, table: Mapping, model: M.AlphaModel,
+                       settings: Mapping[str, FitSettings]) -> CO.CorrectedForm:
+    """Fit the corrected form of ``config`` (:mod:`coathertz.refit.corrected`).
+
+    Rigid substrate: base the one-alpha refit, correction by linear least squares on the training
+    rows. Elastic substrate: base eq (17) at alpha = 1; full tensor corrections fitted on the
+    complete training grid one variable at a time (:func:`coathertz.refit.corrected.fit_tensor`);
+    p0's axis branch on the training grid (the pressure on the axis) and on the stiff-coating
+    patch grid (set ``patch``), its ring branch on the ring grid (set ``ring``).
+    """
+    from coathertz.refit.sweep import PATCH_BOX, RING_BOX
+
+    tr = select(table, config=config, set="train")
+    if config == "rigid":
+        s = settings["corrected_rigid"]
+        X = M.variables("rigid", None, tr["H"], tr["nu_c"])
+        v = CO.correction_weight("rigid", tr["H"])
+        surfaces = {}
+        for q in M.QUANTITIES:
+            base = np.log(model.bar(q, None, tr["H"], tr["nu_c"]))
+            try:  # a complete grid: one variable at a time
+                surfaces[q] = CO.tensor_surface(M.VARIABLES["rigid"], M.BOXES["rigid"], s.degrees, X,
+                                                np.log(tr[f"{q}_bar"]) - base, v)
+            except CoatHertzError:  # an incomplete grid (failed cases): general least squares
+                surfaces[q] = CO.fit_corrected(q, tr, base, s, config="rigid")[0]
+        return CO.CorrectedForm("rigid", {q: None for q in M.QUANTITIES}, surfaces)
+    base = {q: 1.0 for q in M.QUANTITIES}
+    form0 = CO.CorrectedForm("elastic", base, {})
+    s = settings["corrected_elastic"]
+    X = M.variables("elastic", tr["E"], tr["H"], tr["nu_c"], tr["nu_s"])
+    v = CO.correction_weight("elastic", tr["H"])
+    surfaces, patch, ring = {}, {}, {}
+    for q in M.QUANTITIES:
+        target = _p_axis(tr) if q == "p" else tr[f"{q}_bar"]
+        y = np.log(target) - form0.base_log_bar(q, None, tr["E"], tr["H"], tr["nu_c"], tr["nu_s"])
+        surfaces[q] = CO.tensor_surface(M.VARIABLES["elastic"], M.BOXES["elastic"], s.degrees, X, y, v)
+    pa = select(table, config="elastic", set="patch")
+    if len(pa["H"]):
+        s_pa = M.variables("elastic", pa["E"], pa["H"], pa["nu_c"], pa["nu_s"])[2]
+        Xp = np.vstack([M.xi_H(pa["H"]), np.log10(pa["E"]), s_pa])
+        y = np.log(_p_axis(pa)) - form0.base_log_bar("p", None, pa["E"], pa["H"], pa["nu_c"], pa["nu_s"])
+        box = (M.XI_H, PATCH_BOX["log10_E"], PATCH_BOX["s"])
+        patch["p"] = CO.tensor_surface(("xi_H", "log10_E", "s"), box,
+                                       settings["corrected_elastic_patch"].degrees, Xp, y,
+                                       CO.correction_weight("elastic", pa["H"]))
+    rg = select(table, config="elastic", set="ring")
+    if len(rg["H"]):
+        Xr = M.variables("elastic", rg["E"], rg["H"], rg["nu_c"], rg["nu_s"])
+        y = np.log(rg["p_ring_bar"]) - form0.base_log_bar("p", None, rg["E"], rg["H"], rg["nu_c"], rg["nu_s"])
+        ring["p"] = CO.tensor_surface(M.VARIABLES["elastic"], tuple(RING_BOX.values()),
+                                      settings["corrected_elastic_ring"].degrees, Xr, y, np.ones(len(y)))
+    return CO.CorrectedForm("elastic", base, surfaces, patch, ring)
+
+
+def _validate(config: str, out: dict, key: str, errs: Mapping[str, np.ndarray], va) -> None:
+    """Store the validation error statistics and bins of one form (``key``: ``alpha``/``corrected``)."""
+    out["validation_error"] = {q: error_stats(e) for q, e in errs.items()}
+    out["bounds"] = _bins(config, va, errs)
 
 
 def build(table: Mapping, *, settings: Mapping[str, FitSettings] | None = None,
           provenance: Mapping | None = None) -> dict:
-    """Fit every configuration present in ``table`` and return the data-file dict."""
+    """Fit every configuration present in ``table`` and return the data-file dict.
+
+    Per circular configuration: the one-alpha refit (``surfaces``, ``validation_error``,
+    ``bounds``) and the corrected form (``corrected``: the refit alpha times a smooth factor,
+    :mod:`coathertz.refit.corrected`); ``best_form`` names the form with the smaller largest
+    validation error, which the predictor uses. Ellipses: a correction on top of the best
+    circular form of the elastic substrate.
+    """
     settings = {**DEFAULT_SETTINGS, **(settings or {})}
     out: dict = {"format": FORMAT, "provenance": dict(provenance or {}), "ranges": {}, "settings": {},
                  "surfaces": {}, "fit_error": {}, "validation_error": {}, "paper_error": {}, "bounds": {},
-                 "single_alpha_floor": {}}
+                 "single_alpha_floor": {}, "corrected": {}, "best_form": {}}
     out["provenance"]["sweep_sha256"] = table_hash(table)
     t0 = time.perf_counter()
-    models: dict[str, M.AlphaModel] = {}
+    circular: dict[str, object] = {}
     for config in M.CONFIGS:
         tr, va = select(table, config=config, set="train"), select(table, config=config, set="valid")
         if len(tr["H"]) == 0:
             continue
         s = settings[config]
+        rigid = config == "rigid"
         surfs, fit_err = {}, {}
+        X = M.variables(config, tr["E"], tr["H"], tr["nu_c"], tr["nu_s"])
         for q in M.QUANTITIES:
-            X = M.variables(config, tr["E"], tr["H"], tr["nu_c"], tr["nu_s"])
-            rigid = config == "rigid"
-
             def f(al, q=q, tr=tr, rigid=rigid):
                 return M.bar_from_alpha(q, al, tr["E"], tr["H"], tr["nu_c"], tr["nu_s"], rigid=rigid)
 
             res = fit_surface(M.VARIABLES[config], M.BOXES[config], X, np.log(tr[f"{q}_bar"]), f, s)
             surfs[q] = res.surface
             fit_err[q] = error_stats(100.0 * np.expm1(res.residual))
-        model = models[config] = M.AlphaModel(config, surfs)
-        out["single_alpha_floor"][config] = _floor(config, select(table, config=config))
+        model = M.AlphaModel(config, surfs)
+        out["single_alpha_floor"][config] = _floor(config, {k: np.concatenate([tr[k], va[k]]) for k in tr})
         out["surfaces"][config] = {q: sf.to_dict() for q, sf in surfs.items()}
         out["settings"][config] = s.to_dict()
         out["fit_error"][config] = fit_err
         out["ranges"][config] = _ranges(config, select(table, config=config))
+        form = fit_corrected_form(config, table, model, settings)
+        corr: dict = {**form.to_dict(), "settings": {k: s_.to_dict() for k, s_ in settings.items()
+                                                     if k.startswith(f"corrected_{config}")}}
+        corr["fit_error"] = {q: error_stats(100.0 * np.expm1(
+            form.log_bar(q, tr["E"], tr["H"], tr["nu_c"], tr["nu_s"], model) - np.log(tr[f"{q}_bar"])))
+            for q in M.QUANTITIES}
+        circular[config] = (model, form)
+        best = "alpha"
         if len(va["H"]):
             errs = _circ_errs(model, va)
             out["validation_error"][config] = {q: error_stats(e) for q, e in errs.items()}
@@ -142,12 +243,19 @@ def build(table: Mapping, *, settings: Mapping[str, FitSettings] | None = None,
                 q: error_stats(100.0 * (paper_bars(config, q, va) / va[f"{q}_bar"] - 1))
                 for q in M.QUANTITIES}
             out["bounds"][config] = _bins(config, va, errs)
+            cerrs = {q: 100.0 * np.expm1(form.log_bar(q, va["E"], va["H"], va["nu_c"], va["nu_s"], model)
+                                          - np.log(va[f"{q}_bar"])) for q in M.QUANTITIES}
+            _validate(config, corr, "corrected", cerrs, va)
+            worst = {k: max(v["max"] for v in d.values()) for k, d in
+                     (("alpha", out["validation_error"][config]), ("corrected", corr["validation_error"]))}
+            best = min(worst, key=worst.get)
             inside = (va["H"] >= 0.01) & (va["H"] <= 3.0)
             if config == "elastic":
                 inside &= (va["E"] >= 0.25) & (va["E"] <= 4.0)
             out.setdefault("validation_error_paper_range", {})[config] = {
                 "range": "H in [0.01, 3]" + (", E in [1/4, 4]" if config == "elastic" else ""),
                 "refit": {q: error_stats(e[inside]) for q, e in errs.items()},
+                "corrected": {q: error_stats(e[inside]) for q, e in cerrs.items()},
                 "paper": {q: error_stats(100.0 * (paper_bars(config, q, va)[inside]
                                                   / va[f"{q}_bar"][inside] - 1)) for q in M.QUANTITIES}}
             if config == "elastic":
@@ -155,39 +263,12 @@ def build(table: Mapping, *, settings: Mapping[str, FitSettings] | None = None,
                 out.setdefault("validation_error_nu_matched", {})[config] = {
                     "max_abs_nu_c_minus_nu_s": NU_MATCHED,
                     **{q: error_stats(e[near]) for q, e in errs.items()}}
-    tr, va = select(table, config="elastic", set="train"), select(table, config="elastic", set="valid")
-    if len(tr["H"]):
-        s = settings["direct"]
-        dsurf, derr = {}, {}
-        for q in M.QUANTITIES:
-            dsurf[q], derr[q] = DI.fit(q, tr, s)
-        d: dict = {"surfaces": {q: sf.to_dict() for q, sf in dsurf.items()}, "settings": s.to_dict(),
-                   "fit_error": derr}
-        if len(va["H"]):
-            errs = {q: 100.0 * np.expm1(DI.log_bar(dsurf[q], q, va["E"], va["H"], va["nu_c"], va["nu_s"])
-                                        - np.log(va[f"{q}_bar"])) for q in M.QUANTITIES}
-            d["validation_error"] = {q: error_stats(e) for q, e in errs.items()}
-            d["bounds"] = _bins("elastic", va, errs)
-        out["direct"] = d
-        s = settings["corrected"]
-        el = models["elastic"]
-        csurf, cerr = {}, {}
-        for q in M.QUANTITIES:
-            base = np.log(el.bar(q, tr["E"], tr["H"], tr["nu_c"], tr["nu_s"]))
-            csurf[q], cerr[q] = DI.fit_corrected(q, tr, base, s)
-        d = {"surfaces": {q: sf.to_dict() for q, sf in csurf.items()}, "settings": s.to_dict(),
-             "fit_error": cerr}
-        if len(va["H"]):
-            errs = {}
-            for q in M.QUANTITIES:
-                lb = np.log(el.bar(q, va["E"], va["H"], va["nu_c"], va["nu_s"]))
-                lb += DI.log_correction(csurf[q], va["E"], va["H"], va["nu_c"], va["nu_s"])
-                errs[q] = 100.0 * np.expm1(lb - np.log(va[f"{q}_bar"]))
-            d["validation_error"] = {q: error_stats(e) for q, e in errs.items()}
-            d["bounds"] = _bins("elastic", va, errs)
-        out["corrected"] = d
+        out["corrected"][config] = corr
+        out["best_form"][config] = best
     tr, va = select(table, config="ellipse", set="train"), select(table, config="ellipse", set="valid")
-    if len(tr["H"]) and "elastic" in models:
+    if len(tr["H"]) and "elastic" in circular:
+        model, form = circular["elastic"]  # type: ignore[misc]
+        use_corr = out["best_form"]["elastic"] == "corrected"
         s = settings["ellipse"]
         terms = term_set(s.degrees, s.cross or None)
         lo, hi = tuple(b[0] for b in EL.BOX), tuple(b[1] for b in EL.BOX)
@@ -196,7 +277,7 @@ def build(table: Mapping, *, settings: Mapping[str, FitSettings] | None = None,
         pre = EL.prefactor(tr["E"], tr["H"], tr["rho"])
         surfs, fit_err = {}, {}
         for q in EL.QUANTITIES:
-            base = models["elastic"].bar(EL.BASE[q], tr["E"], tr["H"], tr["nu_c"], tr["nu_s"])
+            base = ellipse_base(model, form if use_corr else None, q, tr)
             y = np.log(tr[f"{q}_bar"] / base)
             A = pre[:, None] * Phi
             c = np.linalg.solve(A.T @ A + s.ridge * np.eye(len(terms)), A.T @ y)
@@ -206,9 +287,10 @@ def build(table: Mapping, *, settings: Mapping[str, FitSettings] | None = None,
         out["settings"]["ellipse"] = s.to_dict()
         out["fit_error"]["ellipse"] = fit_err
         out["ranges"]["ellipse"] = _ranges("ellipse", select(table, config="ellipse"))
+        out["best_form"]["ellipse"] = "corrected" if use_corr else "alpha"
         if len(va["H"]):
-            errs = {q: 100.0 * (ellipse_bars(models["elastic"], surfs, q, va) / va[f"{q}_bar"] - 1)
-                    for q in EL.QUANTITIES}
+            errs = {q: 100.0 * (ellipse_bars(model, form if use_corr else None, surfs, q, va)
+                                / va[f"{q}_bar"] - 1) for q in EL.QUANTITIES}
             out["validation_error"]["ellipse"] = {q: error_stats(e) for q, e in errs.items()}
             out["paper_error"]["ellipse"] = {
                 q: error_stats(100.0 * (paper_bars("ellipse", q, va) / va[f"{q}_bar"] - 1))

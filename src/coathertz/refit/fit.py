@@ -40,6 +40,13 @@ class FitSettings:
                 "iterations": self.iterations, "reweight": self.reweight,
                 "reweight_power": self.reweight_power, "init_from_inverse": self.init_from_inverse}
 
+    @classmethod
+    def from_dict(cls, d: Mapping) -> FitSettings:
+        return cls(tuple(int(x) for x in d["degrees"]),
+                   tuple(tuple(int(x) for x in c) for c in d.get("cross", ())),
+                   float(d.get("ridge", 1e-8)), int(d.get("iterations", 40)), int(d.get("reweight", 6)),
+                   float(d.get("reweight_power", 1.0)), bool(d.get("init_from_inverse", False)))
+
 
 @dataclass(frozen=True)
 class FitResult:

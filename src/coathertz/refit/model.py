@@ -12,9 +12,12 @@ changes: instead of the representative curves of Appendix A and the piecewise eq
 
 a Chebyshev-product surface (:class:`~coathertz.refit.surface.Surface`) in
 
-* elastic substrate: :math:`\log_{10} H \in [-2, 1]`, :math:`\log_{10} E \in [-1, 1]`,
-  :math:`\nu_c, \nu_s \in [0, 0.5]` (E = Ec*/Es*, H = h/a0s, eq 7a);
-* rigid substrate: :math:`\log_{10} H \in [-3, 1]`, :math:`\nu_c \in [0, 0.5]` (H = h/a0c, 7b).
+* elastic substrate: the reduced coordinates of :mod:`coathertz.refit.reduced`,
+  :math:`\log_{10} H \in [-3, 1]`, :math:`\log_{10} E \in [-1, 1]` and Dundurs' normalised
+  :math:`s \in [0, 1]` (E = Ec*/Es*, H = h/a0s, eq 7a): the bars depend on the materials only
+  through :math:`(\lambda, \kappa)`, i.e. through (E, s), so alpha needs three variables, not four;
+* rigid substrate: :math:`\log_{10} H \in [-3, 1]`, :math:`t(\nu_c)` with :math:`\nu_c \in [0, 0.5]`
+  (H = h/a0c, 7b).
 
 Outside these boxes each variable is clamped, so alpha is held at its boundary value.
 Limits: as H -> 0, alpha H -> 0 and eq (17) gives E1* -> Es* (substrate Hertz); as
@@ -32,26 +35,44 @@ import numpy as np
 
 from coathertz.errors import CoatHertzError
 from coathertz.extended import EXPONENT, E1_over_Ec, constants_from_ratio
+from coathertz.refit.reduced import s_coordinate
 from coathertz.refit.surface import Surface
 
 QUANTITIES = ("a", "delta", "p")
 CONFIGS = ("elastic", "rigid")
-LOG10_H = (-2.0, 1.0)  # H in [0.01, 10] (trained); alpha held at its H = 0.01 value below
+LOG10_H = (-3.0, 1.0)  # H in [0.001, 10]
 LOG10_E = (-1.0, 1.0)  # E in [1/10, 10]
 NU_EPS = 0.01
 #: On a rigid substrate nu_c enters through ``t(nu) = log10(1 + NU_EPS - 2 nu)``: thin layers
 #: stiffen like ``1/(1 - 2 nu)`` as nu -> 1/2, and t spreads that end (t = 0.004 at nu = 0, -2 at
-#: nu = 0.5). On an elastic substrate (nu < 0.5) nu_c and nu_s enter linearly.
+#: nu = 0.5). On an elastic substrate nu_c and nu_s enter through Dundurs' s (reduced.py).
 T_NU = (math.log10(NU_EPS), math.log10(1.0 + NU_EPS))
 NU = (0.0, 0.5)
 VARIABLES = {
-    "elastic": ("log10_H", "log10_E", "nu_c", "nu_s"),
+    "elastic": ("log10_H", "log10_E", "s"),
     "rigid": ("log10_H", "t_nu_c"),
 }
 BOXES = {
-    "elastic": (LOG10_H, LOG10_E, NU, NU),
-    "rigid": ((-3.0, 1.0), T_NU),  # rigid substrate: trained down to H = 0.001
+    "elastic": (LOG10_H, LOG10_E, (0.0, 1.0)),
+    "rigid": (LOG10_H, T_NU),
 }
+
+
+#: The stretched thickness coordinate ``xi_H = asinh((log10 H - XI_C) / XI_W)`` of the stiff-coating
+#: patch of p0 (:mod:`coathertz.refit.corrected`): nodes uniform in xi_H are dense around
+#: H = 10^XI_C, where p0 of stiff coatings rises steeply with H.
+XI_C, XI_W = -0.35, 0.25
+XI_H = (math.asinh((LOG10_H[0] - XI_C) / XI_W), math.asinh((LOG10_H[1] - XI_C) / XI_W))
+
+
+def xi_H(H) -> np.ndarray:
+    """``asinh((log10 H - XI_C) / XI_W)``."""
+    return np.arcsinh((np.log10(np.asarray(H, dtype=float)) - XI_C) / XI_W)
+
+
+def log10_H_of_xi(xi) -> np.ndarray:
+    """The inverse of :func:`xi_H` (in log10 H)."""
+    return XI_C + XI_W * np.sinh(np.asarray(xi, dtype=float))
 
 
 #: ln alpha is soft-capped at +-LN_ALPHA_CAP (alpha in (1e-4, 1e4)): where a bar does not depend on
@@ -88,7 +109,7 @@ def variables(config: str, E=None, H=None, nu_c=0.3, nu_s=0.3) -> np.ndarray:
     if np.any(~(E > 0)) or np.any(np.isinf(E)):
         raise CoatHertzError("modulus ratio E = Ec*/Es* must satisfy 0 < E < inf")
     E, H, nu_c, nu_s = np.broadcast_arrays(E, H, np.asarray(nu_c, float), np.asarray(nu_s, float))
-    return np.vstack([np.log10(H).ravel(), np.log10(E).ravel(), nu_c.ravel(), nu_s.ravel()])
+    return np.vstack([np.log10(H).ravel(), np.log10(E).ravel(), s_coordinate(E, nu_c, nu_s).ravel()])
 
 
 def bar_from_alpha(q: str, alpha, E, H, nu_c, nu_s, rigid: bool = False) -> np.ndarray:

@@ -27,6 +27,9 @@ from coathertz.refit.build import BINS, FORMAT, bin_index
 from coathertz.refit.surface import Surface
 
 DATA_FILE = "alpha_refit.json"
+#: How the bound's text names each form.
+FORM_LABEL = {"alpha": "one alpha per quantity, eqs 17-18",
+              "corrected": "second closed form: eqs 17-18 x smooth correction factor"}
 
 
 @dataclass(frozen=True)
@@ -40,6 +43,7 @@ class Bound:
     n_points: int
     in_range: bool
     notes: tuple[str, ...] = ()
+    form: str = ""
 
     @property
     def worst(self) -> float:
@@ -49,7 +53,8 @@ class Bound:
     def describe(self) -> str:
         vals = ", ".join(f"{q} {v:.2g} %" for q, v in self.values.items() if v is not None)
         where = "inside" if self.in_range else "OUTSIDE"
-        return (f"refit rule ({self.config}): validated max |error| {vals} "
+        form = f", {self.form}" if self.form else ""
+        return (f"refit rule ({self.config}{form}): validated max |error| {vals} "
                 f"({self.n_points} validation points in {self.region}; inputs {where} the validated range)")
 
 
@@ -68,10 +73,9 @@ class RefitRule:
         surfaces = {c: {q: Surface.from_dict(d) for q, d in qs.items()}
                     for c, qs in self.data["surfaces"].items()}
         object.__setattr__(self, "_surfaces", surfaces)
-        direct = {q: Surface.from_dict(d) for q, d in self.data.get("direct", {}).get("surfaces", {}).items()}
-        object.__setattr__(self, "_direct", direct)
-        corrected = {q: Surface.from_dict(d)
-                     for q, d in self.data.get("corrected", {}).get("surfaces", {}).items()}
+        from coathertz.refit.corrected import CorrectedForm
+
+        corrected = {c: CorrectedForm.from_dict(c, v) for c, v in self.data.get("corrected", {}).items()}
         object.__setattr__(self, "_corrected", corrected)
 
     # -- surfaces ----------------------------------------------------------------------
@@ -101,32 +105,39 @@ class RefitRule:
             return float(self.alpha_rigid(quantity, H, nu_c)[0])
         return float(self.alpha(quantity, body.modulus_ratio, H, nu_c, body.material.nu)[0])
 
-    @property
-    def has_direct(self) -> bool:
-        return "direct" in self.data
+    def best_form(self, config: str) -> str:
+        """The form the predictor uses for ``config``: ``corrected`` (refit alpha times a smooth
+        factor, :mod:`coathertz.refit.corrected`) or ``alpha`` (one alpha per quantity)."""
+        form = self.data.get("best_form", {}).get(config, "alpha")
+        return form if form != "corrected" or config in self._corrected or config == "ellipse" else "alpha"  # type: ignore[attr-defined]
 
-    def direct_bar(self, quantity: str, E, H, nu_c=0.3, nu_s=0.3) -> np.ndarray:
-        """The second closed form (:mod:`coathertz.refit.direct`): bars of a rigid indenter on a
-        coated elastic half-space, fitted directly (no eq 17)."""
-        from coathertz.refit import direct
+    def log_correction(self, config: str, quantity: str, E=None, H=1.0, nu_c=0.3, nu_s=0.3) -> np.ndarray:
+        """``ln`` of the corrected form's bar over the one-alpha refit's bar (circular ``config``):
+        the factor the predictor applies to the one-alpha prediction; zero without a corrected form."""
+        q = M.check_quantity("a" if quantity == "b" else quantity)
+        form = self._corrected.get(config)  # type: ignore[attr-defined]
+        model = self.model(config)
+        one = np.log(model.bar(q, E, H, nu_c, nu_s))
+        if form is None:
+            return np.zeros_like(one)
+        return form.log_bar(q, E, H, nu_c, nu_s, model) - one
 
-        if not self.has_direct:
-            raise CoatHertzError(f"the refit data {self.source!r} has no direct fit")
+    def corrected_bar(self, quantity: str, E, H, nu_c=0.3, nu_s=0.3, config: str = "elastic") -> np.ndarray:
+        """The corrected form's bars (:mod:`coathertz.refit.corrected`: eqs (17)-(18) times a smooth
+        factor vanishing in the Hertz limits; rigid indenter, circular contact); ``config``
+        ``elastic`` or ``rigid`` (then ``E`` and ``nu_s`` are ignored)."""
+        form = self._corrected.get(config)  # type: ignore[attr-defined]
+        if form is None:
+            raise CoatHertzError(f"the refit data {self.source!r} has no corrected form for {config!r}")
         q = M.check_quantity(quantity)
-        return np.exp(direct.log_bar(self._direct[q], q, E, H, nu_c, nu_s))  # type: ignore[attr-defined]
+        return np.exp(form.log_bar(q, E, H, nu_c, nu_s, self.model(config)))
 
-    def corrected_bar(self, quantity: str, E, H, nu_c=0.3, nu_s=0.3) -> np.ndarray:
-        """The corrected one-alpha form (:func:`coathertz.refit.direct.fit_corrected`): refit alpha in
-        eqs (17)-(18) times a smooth factor vanishing in both Hertz limits (elastic substrate, rigid
-        indenter, circular contact)."""
-        from coathertz.refit import direct
-
-        if "corrected" not in self.data:
-            raise CoatHertzError(f"the refit data {self.source!r} has no corrected form")
-        q = M.check_quantity(quantity)
-        base = self.model("elastic").bar(q, E, H, nu_c, nu_s)
-        corr = self._corrected[q]  # type: ignore[attr-defined]
-        return base * np.exp(direct.log_correction(corr, E, H, nu_c, nu_s))
+    def bars(self, config: str, E=None, H=1.0, nu_c=0.3, nu_s=0.3) -> dict[str, np.ndarray]:
+        """Bars of a, delta, p of the best form of ``config`` (vectorised, flattened)."""
+        if self.best_form(config) == "corrected":
+            form = self._corrected[config]  # type: ignore[attr-defined]
+            return {q: np.exp(v) for q, v in form.log_bars(E, H, nu_c, nu_s, self.model(config)).items()}
+        return self.model(config).bars(E, H, nu_c, nu_s)
 
     # -- bounds ------------------------------------------------------------------------
     def in_range(self, config: str, E=1.0, H=1.0, nu_c=0.3, nu_s=0.3, rho=1.0) -> bool:
@@ -136,9 +147,12 @@ class RefitRule:
         vals = {"H": H, "E": E, "nu_c": nu_c, "nu_s": nu_s, "rho": rho}
         return all(lo * (1 - 1e-9) - 1e-12 <= vals[k] <= hi * (1 + 1e-9) + 1e-12 for k, (lo, hi) in r.items())
 
-    def bound(self, config: str, E=1.0, H=1.0, nu_c=0.3, nu_s=0.3, rho=1.0) -> Bound:
-        """Validated max |err| of the region of the inputs (see :class:`Bound`)."""
-        b = self.data["bounds"].get(config)
+    def bound(self, config: str, E=1.0, H=1.0, nu_c=0.3, nu_s=0.3, rho=1.0, form: str | None = None) -> Bound:
+        """Validated max |err| of the region of the inputs (see :class:`Bound`), of ``form``
+        (default: :meth:`best_form`)."""
+        form = form or self.best_form(config)
+        b = (self.data["corrected"][config].get("bounds") if form == "corrected" and config != "ellipse"
+             else self.data["bounds"].get(config))
         if b is None:
             return Bound(config, {}, "no validation data", 0, False, ("no validation data for " + config,))
         cols = {"H": np.array([H]), "E": np.array([E]), "nu_c": np.array([nu_c])}
@@ -150,7 +164,7 @@ class RefitRule:
         vals = {q: m[i][j] for q, m in b["max"].items()}
         region = (f"{n1} in [{e1[i]:.3g}, {e1[i + 1]:.3g}], {n2} in [{e2[j]:.3g}, {e2[j + 1]:.3g}]")
         inside = self.in_range(config, E, H, nu_c, nu_s, rho)
-        return Bound(config, vals, region, int(b["count"][i][j]), inside)
+        return Bound(config, vals, region, int(b["count"][i][j]), inside, form=FORM_LABEL[form])
 
 
 def _model(rule: RefitRule, config: str) -> M.AlphaModel:
@@ -205,6 +219,19 @@ def predict(case, rule: RefitRule | None = None, *, warn: bool = True):
         return pred, None
     config, params = _config_of(case)
     notes = []
+    fitted = len(case.coated_bodies) == 1 and all(b.material.is_rigid for b in (case.body1, case.body2)
+                                                  if not b.is_coated)
+    form = rule.best_form(config) if fitted else "alpha"
+    if form == "corrected" and (config == "ellipse" or case.is_circular):
+        base_cfg = "rigid" if config == "rigid" else "elastic"
+        args = {k: params.get(k) for k in ("E", "H", "nu_c", "nu_s")}
+        f = {q: float(np.exp(rule.log_correction(base_cfg, q, args["E"], args["H"], args["nu_c"],
+                                                 0.3 if args["nu_s"] is None else args["nu_s"])[0]))
+             for q in M.QUANTITIES}
+        pred = dataclasses.replace(pred, a=pred.a * f["a"], r_a=pred.r_a * f["a"], r_b=pred.r_b * f["a"],
+                                   delta=pred.delta * f["delta"], p0=pred.p0 * f["p"])
+    elif form == "corrected":
+        form = "alpha"
     if config == "ellipse":
         if rule.has_ellipse:
             surfs = rule.ellipse_surfaces()
@@ -217,11 +244,10 @@ def predict(case, rule: RefitRule | None = None, *, warn: bool = True):
             notes.append("no elliptical correction in this data file: circular alpha only")
     elif case.rigid_substrate and not case.is_circular:
         notes.append("rigid substrate, elliptical contact: only circular contacts were fitted")
-    if len(case.coated_bodies) > 1 or any(not b.material.is_rigid for b in (case.body1, case.body2)
-                                          if not b.is_coated):
+    if not fitted:
         notes.append("fitted for a rigid indenter on one coated body; here alpha is applied through "
-                     "eq (18) without validation")
-    bound = rule.bound(config, **params)
+                     "eq (18) without validation (no correction factor)")
+    bound = rule.bound(config, **params, form=form)
     bound = dataclasses.replace(bound, notes=tuple(notes))
     pred = dataclasses.replace(pred, rule=rule.name)
     if warn:

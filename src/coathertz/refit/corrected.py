@@ -1,0 +1,254 @@
+r"""The second closed form: the refit alpha of eqs (17)-(18) times a smooth correction factor.
+
+Where no single alpha reproduces the exact bar (:func:`coathertz.refit.fit.single_alpha_floor`:
+e.g. the maximum pressure under soft, nearly incompressible coatings on compressible substrates
+around H ~ 0.1), the one-alpha structure cannot reach the target however alpha is fitted. The
+corrected form keeps eqs (1), (17), (18) with the refit alpha and multiplies each bar by a
+factor that vanishes in the Hertz limits:
+
+.. math::
+
+    \ln \bar q = \ln \bar q_\alpha + v(H)\, C_q(x), \qquad
+    v(H) = \begin{cases} w(1 - w),\ w = H/(1 + H) & \text{elastic substrate} \\
+                         1/(1 + H) & \text{rigid substrate} \end{cases}
+
+with :math:`C_q` a clamped tensor Chebyshev surface (:class:`~coathertz.refit.surface.Surface`) in
+the variables of the configuration (:mod:`coathertz.refit.model`: :math:`(\log_{10} H, \log_{10} E, s)`
+on an elastic substrate, :math:`(\log_{10} H, t(\nu_c))` on a rigid one), fitted by linear least
+squares to the residual :math:`\ln \bar q_\text{exact} - \ln \bar q_\alpha` of the one-alpha rule.
+Limits: on an elastic substrate :math:`v \to 0` as H -> 0 (substrate Hertz) and H -> inf
+(coating Hertz); on a rigid substrate as H -> inf (coating Hertz); the thin-layer end H -> 0 is
+not a Hertz limit there and the correction is held at its H = 0.001 value.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from coathertz.errors import CoatHertzError
+from coathertz.refit import model as M
+from coathertz.refit.fit import FitSettings, error_stats
+from coathertz.refit.surface import Surface, chebyshev_table, evaluate_shared, term_set
+
+
+def weight(H) -> np.ndarray:
+    """``w(H) = H/(1 + H)``."""
+    H = np.asarray(H, dtype=float)
+    return H / (1.0 + H)
+
+
+def correction_weight(config: str, H) -> np.ndarray:
+    """The factor ``v(H)`` of the correction (see the module docstring)."""
+    H = np.asarray(H, dtype=float)
+    if config == "rigid":
+        return 1.0 / (1.0 + H)
+    w = weight(H)
+    return w * (1.0 - w)
+
+
+def _design(cols, settings: FitSettings, config: str) -> tuple[Surface, np.ndarray]:
+    """The zero surface over the box of ``config`` and the design matrix ``v(H) * basis`` of the
+    columns ``cols``."""
+    terms = term_set(settings.degrees, settings.cross or None)
+    lo = tuple(b[0] for b in M.BOXES[config])
+    hi = tuple(b[1] for b in M.BOXES[config])
+    proto = Surface(M.VARIABLES[config], lo, hi, terms, tuple(0.0 for _ in terms))
+    X = M.variables(config, cols.get("E"), cols["H"], cols["nu_c"], cols.get("nu_s", 0.3))
+    H = np.asarray(cols["H"], dtype=float)
+    return proto, correction_weight(config, H)[:, None] * proto.design(X)
+
+
+def fit_corrected(q: str, cols, base_log_bar: np.ndarray, settings: FitSettings,
+                  config: str = "elastic") -> tuple[Surface, dict]:
+    """Fit ``C_q`` by linear least squares (a ridge of ``settings.ridge``; ``settings.reweight``
+    Lawson passes towards the minimax fit) to ``ln bar_exact - base_log_bar`` on the rows ``cols``
+    (columns ``E, H, nu_c, nu_s, {q}_bar``). Returns the surface and its training error [%]."""
+    proto, A = _design(cols, settings, config)
+    terms = proto.terms
+    y = np.log(np.asarray(cols[f"{q}_bar"], dtype=float)) - base_log_bar
+    wt = np.ones(len(y))
+    reg = np.sqrt(settings.ridge) * np.eye(len(terms))
+    for _ in range(settings.reweight + 1):
+        sw = np.sqrt(wt / wt.mean())
+        c = np.linalg.lstsq(np.vstack([A * sw[:, None], reg]), np.concatenate([y * sw, np.zeros(len(terms))]),
+                            rcond=None)[0]
+        r = np.abs(A @ c - y)
+        wt = wt * (r / max(r.max(), 1e-300)) + 1e-3
+    surface = Surface(proto.variables, proto.lo, proto.hi, terms, tuple(float(x) for x in c))
+    return surface, error_stats(100.0 * np.expm1(A @ c - y))
+
+
+def log_correction(surface: Surface, E, H, nu_c=0.3, nu_s=0.3, config: str = "elastic") -> np.ndarray:
+    """``v(H) C_q`` of the corrected form (flattened broadcast shape)."""
+    X = M.variables(config, E, H, nu_c, nu_s)
+    return correction_weight(config, 10.0 ** X[0]) * surface(X)
+
+
+def grid_index(X: np.ndarray, decimals: int = 9) -> tuple[list[np.ndarray], np.ndarray] | None:
+    """If the points ``X`` (``(d, n)``) are a complete tensor grid, its node values per variable
+    and the ``(n_1, ..., n_d)`` array of row indices; else None."""
+    R = np.round(np.asarray(X, dtype=float), decimals)
+    nodes, pos = [], []
+    for row in R:
+        u, inv = np.unique(row, return_inverse=True)
+        nodes.append(u)
+        pos.append(inv)
+    shape = tuple(len(u) for u in nodes)
+    if int(np.prod(shape)) != R.shape[1]:
+        return None
+    idx = np.full(shape, -1)
+    idx[tuple(pos)] = np.arange(R.shape[1])
+    if np.any(idx < 0):
+        return None
+    return nodes, idx
+
+
+def fit_tensor(proto: Surface, X: np.ndarray, y: np.ndarray, row_weight: np.ndarray) -> np.ndarray | None:
+    """Least squares of ``row_weight * sum_k c_k prod_v T(s_v)`` = ``y`` for a full tensor term set on
+    a complete tensor grid, one variable at a time: the design matrix is a Kronecker product (the
+    row weight depends on the first variable only), so its pseudo-inverse is the product of the
+    per-variable pseudo-inverses. Returns the coefficients in ``proto.terms`` order, or None when
+    ``X`` is not a complete grid, the weight varies along other variables, or the terms are not a
+    full tensor."""
+    g = grid_index(X)
+    if g is None:
+        return None
+    _nodes, idx = g
+    degs = proto.degrees
+    full = {tuple(t) for t in proto.terms}
+    if len(full) != int(np.prod([k + 1 for k in degs])):
+        return None
+    wv = np.asarray(row_weight, dtype=float)[idx]
+    w1 = wv.reshape(wv.shape[0], -1)[:, 0]
+    if not np.allclose(wv, w1.reshape((-1,) + (1,) * (wv.ndim - 1)), rtol=1e-12, atol=0):
+        return None
+    Y = np.asarray(y, dtype=float)[idx]
+    S = proto.scaled(X)
+    C = Y
+    for v in range(len(degs)):
+        line = S[v][np.moveaxis(idx, v, 0).reshape(idx.shape[v], -1)[:, 0]]
+        T = chebyshev_table(line, degs[v]).T  # (n_v, deg_v + 1)
+        if v == 0:
+            T = w1[:, None] * T
+        P = np.linalg.pinv(T, rcond=1e-13)
+        C = np.moveaxis(np.tensordot(P, np.moveaxis(C, v, 0), axes=(1, 0)), 0, v)
+    return np.array([C[tuple(t)] for t in proto.terms])
+
+
+#: The axis branch of p0 blends from the global surface to the stiff-coating patch over
+#: log10 E in [log10 2, log10 3] (a C^2 smooth step: no jump, no kink).
+BLEND_LOG10_E = (math.log10(2.0), math.log10(3.0))
+
+
+def smoothstep(t) -> np.ndarray:
+    """``t^3 (10 - 15 t + 6 t^2)`` on [0, 1], 0 below, 1 above (C^2)."""
+    t = np.clip(np.asarray(t, dtype=float), 0.0, 1.0)
+    return t**3 * (10.0 - 15.0 * t + 6.0 * t * t)
+
+
+def in_ring_box(H, E) -> np.ndarray:
+    """Inside the box where the peak pressure may sit on a ring (:data:`coathertz.refit.sweep.RING_BOX`;
+    E above the box counts as inside)."""
+    from coathertz.refit.sweep import RING_BOX
+
+    lh, le = np.log10(np.asarray(H, dtype=float)), np.log10(np.asarray(E, dtype=float))
+    (h0, h1), (e0, _) = RING_BOX["log10_H"], RING_BOX["log10_E"]
+    return (lh >= h0) & (lh <= h1) & (le >= e0)
+
+
+@dataclass(frozen=True)
+class CorrectedForm:
+    """The corrected form of one circular configuration (see the module docstring).
+
+    ``base``: the constant alpha of the base per quantity, or None for the one-alpha refit of the
+    same data file. Elastic substrate, p0: the axis branch blends the global surface with the
+    stiff-coating ``patch`` (in ``xi_H``, :func:`coathertz.refit.model.xi_H`) over
+    :data:`BLEND_LOG10_E`, and inside the ring box p0 is the larger of the axis branch and the
+    ``ring`` branch (the largest pressure on 0.2 a <= r <= a): the maximum pressure has a kink
+    where the peak leaves the axis, which no smooth surface reproduces.
+    """
+
+    config: str
+    base: dict
+    surfaces: dict
+    patch: dict = field(default_factory=dict)
+    ring: dict = field(default_factory=dict)
+
+    def base_log_bar(self, q: str, alpha_model: M.AlphaModel | None, E, H, nu_c, nu_s) -> np.ndarray:
+        E, H, nu_c, nu_s = (a.ravel() for a in np.broadcast_arrays(
+            *(np.asarray(0.3 if v is None else v, dtype=float) for v in (E, H, nu_c, nu_s))))
+        a0 = self.base.get(q)
+        if a0 is None:
+            if alpha_model is None:
+                raise CoatHertzError("the corrected form's base is the one-alpha refit: pass its model")
+            return np.log(alpha_model.bar(q, E, H, nu_c, nu_s))
+        return np.log(M.bar_from_alpha(q, float(a0), E, H, nu_c, nu_s, rigid=self.config == "rigid"))
+
+    def log_bar(self, q: str, E, H, nu_c=0.3, nu_s=0.3,
+                alpha_model: M.AlphaModel | None = None) -> np.ndarray:
+        """``ln bar_q`` (flattened broadcast shape)."""
+        return self.log_bars(E, H, nu_c, nu_s, alpha_model, (q,))[q]
+
+    def log_bars(self, E, H, nu_c=0.3, nu_s=0.3, alpha_model: M.AlphaModel | None = None,
+                 quantities=M.QUANTITIES) -> dict[str, np.ndarray]:
+        """``ln bar_q`` of several quantities at once (the variables and the weights are shared)."""
+        E = None if self.config == "rigid" else E
+        X = M.variables(self.config, E, H, nu_c, nu_s)
+        Hf = 10.0 ** X[0]
+        v = correction_weight(self.config, Hf)
+        if self.config == "rigid":
+            Eb, nu_sb = None, None
+            nu_cb = np.broadcast_arrays(np.asarray(H, dtype=float), np.asarray(nu_c, dtype=float))[1].ravel()
+        else:
+            Eb = 10.0 ** X[1]
+            _, _, nu_cb, nu_sb = (a.ravel() for a in np.broadcast_arrays(
+                *(np.asarray(x, dtype=float) for x in (E, H, nu_c, nu_s))))
+        plain = [q for q in quantities if q not in self.patch]
+        shared = (dict(zip(plain, evaluate_shared([self.surfaces[q] for q in plain], X), strict=True))
+                  if plain else {})
+        out = {}
+        for q in quantities:
+            base = self.base_log_bar(q, alpha_model, Eb, Hf, nu_cb, nu_sb)
+            if q in self.patch:
+                beta = smoothstep((X[1] - BLEND_LOG10_E[0]) / (BLEND_LOG10_E[1] - BLEND_LOG10_E[0]))
+                val = base.copy()
+                glob, on = beta < 1.0, beta > 0.0
+                val[glob] += v[glob] * self.surfaces[q](X[:, glob]) * (1.0 - beta[glob])
+                if np.any(on):
+                    Xp = np.vstack([M.xi_H(Hf[on]), X[1:, on]])
+                    val[on] += v[on] * self.patch[q](Xp) * beta[on]
+            else:
+                val = base + v * shared[q]
+            if q in self.ring:
+                inside = in_ring_box(Hf, 10.0 ** X[1])
+                if np.any(inside):
+                    val[inside] = np.maximum(val[inside], base[inside] + self.ring[q](X[:, inside]))
+            out[q] = val
+        return out
+
+    def to_dict(self) -> dict:
+        return {"base": dict(self.base), "surfaces": {q: s.to_dict() for q, s in self.surfaces.items()},
+                "patch": {q: s.to_dict() for q, s in self.patch.items()},
+                "ring": {q: s.to_dict() for q, s in self.ring.items()}}
+
+    @classmethod
+    def from_dict(cls, config: str, d: Mapping) -> CorrectedForm:
+        def surf(key):
+            return {q: Surface.from_dict(s) for q, s in d.get(key, {}).items()}
+
+        return cls(config, dict(d.get("base", {})), surf("surfaces"), surf("patch"), surf("ring"))
+
+
+def tensor_surface(variables, box, degrees, X, y, row_weight) -> Surface:
+    """A full tensor Chebyshev surface fitted to ``y`` on the complete grid ``X`` (:func:`fit_tensor`)."""
+    terms = term_set(degrees, (tuple(degrees[:2]),) if len(degrees) > 2 else None)
+    lo, hi = tuple(b[0] for b in box), tuple(b[1] for b in box)
+    proto = Surface(tuple(variables), lo, hi, terms, tuple(0.0 for _ in terms))
+    c = fit_tensor(proto, X, y, row_weight)
+    if c is None:
+        raise CoatHertzError("tensor fit: the rows are not a complete tensor grid")
+    return Surface(proto.variables, lo, hi, terms, tuple(float(x) for x in c))
