@@ -45,10 +45,28 @@ def test_round_trip_and_validation():
         s(np.zeros((3, 4)))
 
 
-def test_shared_evaluation_equals_one_by_one():
+def test_shared_evaluation_equals_the_design_matrix():
+    """Surfaces of different degrees and term sets in one shared evaluation (the matrix product
+    over the union of the terms), across the table and product chunk boundaries."""
     from coathertz.refit.surface import evaluate_shared
 
     ss = [_surface(seed) for seed in range(3)]
+    terms = term_set((3, 6, 1, 2), ((1, 3), (2, 0)))
+    c = np.random.default_rng(9).normal(size=len(terms))
+    ss.append(Surface(("x", "y", "u", "v"), (-3, -1, 0, 0), (1, 1, 0.5, 0.5), terms, tuple(c)))
     X = np.random.default_rng(2).uniform([-4, -1.5, 0, 0], [2, 1.5, 0.5, 0.5], size=(70001, 4)).T
     for got, s in zip(evaluate_shared(ss, X), ss, strict=True):
-        np.testing.assert_allclose(got, s(X), rtol=1e-12, atol=1e-12)
+        np.testing.assert_allclose(got, s.design(X) @ np.array(s.coef), rtol=1e-12, atol=1e-12)
+
+
+@pytest.mark.parametrize("degrees", [(7,), (6, 3), (8, 4, 3)])
+def test_full_tensor_surfaces_equal_the_design_matrix(degrees):
+    """1, 2 and 3 variables with every term of the tensor (the corrected form's surfaces)."""
+    import itertools
+
+    d = len(degrees)
+    terms = tuple(itertools.product(*(range(k + 1) for k in degrees)))
+    c = np.random.default_rng(d).normal(size=len(terms))
+    s = Surface(tuple("xyz"[:d]), (-1,) * d, (2,) * d, terms, tuple(c))
+    X = np.random.default_rng(5).uniform(-1.5, 2.5, size=(d, 40000))
+    np.testing.assert_allclose(s(X), s.design(X) @ c, rtol=1e-12, atol=1e-11)

@@ -30,6 +30,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from coathertz.errors import CoatHertzError
+from coathertz.extended import EXPONENT
 from coathertz.refit import model as M
 from coathertz.refit.fit import FitSettings, error_stats
 from coathertz.refit.surface import Surface, chebyshev_table, evaluate_shared, term_set
@@ -188,6 +189,18 @@ class CorrectedForm:
             return np.log(alpha_model.bar(q, E, H, nu_c, nu_s))
         return np.log(M.bar_from_alpha(q, float(a0), E, H, nu_c, nu_s, rigid=self.config == "rigid"))
 
+    def _base_log_bar_cached(self, q, alpha_model, E, H, nu_c, nu_s, cache: dict) -> np.ndarray:
+        """:meth:`base_log_bar` on flattened inputs; quantities whose base is the same constant
+        alpha share one evaluation of eq (17) (``ln bar = k_q ln(E1*/E_ref)``, eq 1)."""
+        a0 = self.base.get(q)
+        if a0 is None:
+            return self.base_log_bar(q, alpha_model, E, H, nu_c, nu_s)
+        key = float(a0)
+        if key not in cache:
+            cache[key] = np.log(M.bar_from_alpha("p", key, E, H, nu_c, nu_s, rigid=self.config == "rigid"))
+            cache[key] /= EXPONENT["p"]  # ln(E1*/E_ref)
+        return EXPONENT[q] * cache[key]
+
     def log_bar(self, q: str, E, H, nu_c=0.3, nu_s=0.3,
                 alpha_model: M.AlphaModel | None = None) -> np.ndarray:
         """``ln bar_q`` (flattened broadcast shape)."""
@@ -207,17 +220,19 @@ class CorrectedForm:
             Eb = 10.0 ** X[1]
             _, _, nu_cb, nu_sb = (a.ravel() for a in np.broadcast_arrays(
                 *(np.asarray(x, dtype=float) for x in (E, H, nu_c, nu_s))))
-        plain = [q for q in quantities if q not in self.patch]
-        shared = (dict(zip(plain, evaluate_shared([self.surfaces[q] for q in plain], X), strict=True))
-                  if plain else {})
+        # every global surface at every point in one shared evaluation (one set of tables, one
+        # matrix product); where the patch takes over, the global value is simply not used
+        shared = dict(zip(quantities, evaluate_shared([self.surfaces[q] for q in quantities], X),
+                          strict=True))
         out = {}
+        ratio_cache: dict = {}
         for q in quantities:
-            base = self.base_log_bar(q, alpha_model, Eb, Hf, nu_cb, nu_sb)
+            base = self._base_log_bar_cached(q, alpha_model, Eb, Hf, nu_cb, nu_sb, ratio_cache)
             if q in self.patch:
                 beta = smoothstep((X[1] - BLEND_LOG10_E[0]) / (BLEND_LOG10_E[1] - BLEND_LOG10_E[0]))
                 val = base.copy()
                 glob, on = beta < 1.0, beta > 0.0
-                val[glob] += v[glob] * self.surfaces[q](X[:, glob]) * (1.0 - beta[glob])
+                val[glob] += v[glob] * shared[q][glob] * (1.0 - beta[glob])
                 if np.any(on):
                     Xp = np.vstack([M.xi_H(Hf[on]), X[1:, on]])
                     val[on] += v[on] * self.patch[q](Xp) * beta[on]

@@ -9,10 +9,13 @@ range warnings.
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import json
 import math
+import os
 import warnings
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from functools import lru_cache
 from importlib import resources
@@ -24,7 +27,7 @@ from coathertz.errors import CoatHertzError, FittedRangeWarning
 from coathertz.refit import ellipse as EL
 from coathertz.refit import model as M
 from coathertz.refit.build import BINS, FORMAT, bin_index
-from coathertz.refit.surface import Surface
+from coathertz.refit.surface import Surface, evaluate_shared
 
 DATA_FILE = "alpha_refit.json"
 #: How the bound's text names each form.
@@ -133,11 +136,39 @@ class RefitRule:
         return np.exp(form.log_bar(q, E, H, nu_c, nu_s, self.model(config)))
 
     def bars(self, config: str, E=None, H=1.0, nu_c=0.3, nu_s=0.3) -> dict[str, np.ndarray]:
-        """Bars of a, delta, p of the best form of ``config`` (vectorised, flattened)."""
-        if self.best_form(config) == "corrected":
-            form = self._corrected[config]  # type: ignore[attr-defined]
-            return {q: np.exp(v) for q, v in form.log_bars(E, H, nu_c, nu_s, self.model(config)).items()}
-        return self.model(config).bars(E, H, nu_c, nu_s)
+        """Bars of a, delta, p of the best form of ``config`` (vectorised, flattened; large inputs
+        are evaluated in one block per core, :func:`in_blocks`)."""
+        return in_blocks(self._bars_function(config), E, H, nu_c, nu_s)
+
+    def _bars_function(self, config: str):
+        """``(E, H, nu_c, nu_s) -> bars`` of the best form of ``config``, in one block."""
+        if self.best_form(config) != "corrected":
+            return self.model(config).bars
+        form = self._corrected[config]  # type: ignore[attr-defined]
+        model = self.model(config)
+
+        def bars(E, H, nu_c, nu_s):
+            return {q: np.exp(v) for q, v in form.log_bars(E, H, nu_c, nu_s, model).items()}
+
+        return bars
+
+    def ellipse_bars(self, E, H, rho, nu_c=0.3, nu_s=0.3) -> dict[str, np.ndarray]:
+        """Bars of r_a, r_b, delta, p of a rigid indenter on a coated half-space with the relative
+        radii ratio ``rho = Rx/Ry >= 1`` (:mod:`coathertz.refit.ellipse`: the circular best form
+        times the ellipticity correction), vectorised like :meth:`bars`."""
+        surfs = self.ellipse_surfaces()
+        if surfs is None:
+            raise CoatHertzError(f"the refit data {self.source!r} has no elliptical correction")
+        circular = self._bars_function("elastic")
+        ordered = [surfs[q] for q in EL.QUANTITIES]
+
+        def bars(E, H, rho, nu_c, nu_s):
+            base = circular(E, H, nu_c, nu_s)
+            pre = EL.prefactor(E, H, rho)
+            vals = evaluate_shared(ordered, EL.variables(E, H, rho))
+            return {q: base[EL.BASE[q]] * np.exp(pre * v) for q, v in zip(EL.QUANTITIES, vals, strict=True)}
+
+        return in_blocks(bars, E, H, rho, nu_c, nu_s)
 
     # -- bounds ------------------------------------------------------------------------
     def in_range(self, config: str, E=1.0, H=1.0, nu_c=0.3, nu_s=0.3, rho=1.0) -> bool:
@@ -261,3 +292,38 @@ def predict(case, rule: RefitRule | None = None, *, warn: bool = True):
         for n in notes:
             warnings.warn(f"refit rule: {n}", FittedRangeWarning, stacklevel=2)
     return pred, bound
+
+
+#: Points per core below which :meth:`RefitRule.bars` evaluates in one block (threads cost more).
+PARALLEL_MIN = 65536
+
+
+def in_blocks(fn, *args) -> dict[str, np.ndarray]:
+    """``fn(*args)`` (returning flattened arrays per key) on the broadcast inputs, in one block per
+    core when there are at least :data:`PARALLEL_MIN` points per core; ``None`` arguments are
+    passed on as ``None``. The blocks run in threads with single-threaded BLAS: numpy releases
+    the GIL in the element-wise work and the matrix products, so every core is used without
+    oversubscription, and the values are those of the one-block evaluation."""
+    arrays = np.broadcast_arrays(*(np.asarray(np.nan if v is None else v, dtype=float) for v in args))
+    n = arrays[0].size
+    threads = min(os.cpu_count() or 1, n // PARALLEL_MIN)
+    if threads < 2:
+        return fn(*args)
+    flat = [a.ravel() for a in arrays]
+    cuts = np.linspace(0, n, threads + 1).astype(int)
+
+    def block(k: int) -> dict[str, np.ndarray]:
+        return fn(*(None if v is None else f[cuts[k] : cuts[k + 1]] for v, f in zip(args, flat, strict=True)))
+
+    with _single_thread_blas(), ThreadPoolExecutor(threads) as pool:
+        parts = list(pool.map(block, range(threads)))
+    return {q: np.concatenate([p[q] for p in parts]) for q in parts[0]}
+
+
+def _single_thread_blas() -> contextlib.AbstractContextManager:
+    """BLAS pinned to one thread (``threadpoolctl``, when installed) while the blocks run."""
+    try:
+        from threadpoolctl import threadpool_limits
+    except ImportError:  # pragma: no cover - optional
+        return contextlib.nullcontext()
+    return threadpool_limits(limits=1, user_api="blas")

@@ -20,7 +20,8 @@ import numpy as np
 
 from coathertz.errors import CoatHertzError
 
-CHUNK = 65536
+CHUNK = 1024  # points per matrix product (W stays in cache)
+TABLE_CHUNK = 32768  # points per set of Chebyshev tables
 
 
 def chebyshev_table(s: np.ndarray, degree: int) -> np.ndarray:
@@ -128,65 +129,23 @@ class Surface:
         return Phi
 
     @cached_property
-    def _groups(self) -> tuple[tuple[tuple[int, ...], np.ndarray], ...]:
-        """Terms grouped by their degrees in the variables after the first two: each group is a
-        small dense matrix over the first two variables (trimmed to its largest degrees)."""
-        groups: dict[tuple[int, ...], dict[tuple[int, int], float]] = {}
+    def _layout(self) -> tuple[tuple[tuple[int, ...], ...], np.ndarray]:
+        """The terms as a matrix: ``rest`` lists the distinct multi-indices of the variables after
+        the first, and ``C[i, r]`` is the coefficient of the term ``(i, *rest[r])``."""
+        rest = tuple(sorted({tuple(t[1:]) for t in self.terms}))
+        where = {r: k for k, r in enumerate(rest)}
+        C = np.zeros((self.degrees[0] + 1, len(rest)))
         for t, c in zip(self.terms, self.coef, strict=True):
-            head = (t[0], t[1] if len(t) > 1 else 0)
-            g = groups.setdefault(tuple(t[2:]), {})
-            g[head] = g.get(head, 0.0) + c
-        out = []
-        for tail, g in sorted(groups.items()):
-            n0 = max(i for i, _ in g) + 1
-            n1 = max(j for _, j in g) + 1
-            C = np.zeros((n1, n0))
-            for (i, j), c in g.items():
-                C[j, i] = c
-            out.append((tail, C))
-        return tuple(out)
-
-    @cached_property
-    def _stacked(self) -> tuple[np.ndarray, tuple[tuple[tuple[int, ...], int, int], ...]]:
-        """All group blocks stacked into one matrix (rows: the second variable's degrees of every
-        group; columns: the first variable's degrees), and per group ``(tail, first row, rows)``."""
-        n0 = max(C.shape[1] for _, C in self._groups)
-        rows, index, r = [], [], 0
-        for tail, C in self._groups:
-            block = np.zeros((C.shape[0], n0))
-            block[:, : C.shape[1]] = C
-            rows.append(block)
-            index.append((tail, r, C.shape[0]))
-            r += C.shape[0]
-        return np.vstack(rows), tuple(index)
+            C[t[0], where[tuple(t[1:])]] += c
+        return rest, C
 
     def __call__(self, X: np.ndarray) -> np.ndarray:
-        """Values at the points ``X`` (shape ``(d, n)``), vectorised: one matrix product over the
-        first variable for all terms, then the second variable and the tails elementwise."""
+        """Values at the points ``X`` (shape ``(d, n)``), vectorised (:func:`evaluate_shared`)."""
         X = np.asarray(X, dtype=float)
         d = len(self.variables)
         if X.ndim != 2 or X.shape[0] != d:
             raise CoatHertzError(f"Surface expects X of shape ({d}, n), got {X.shape}")
-        n = X.shape[1]
-        out = np.empty(n)
-        degs = self.degrees
-        big, index = self._stacked
-        chunk = int(min(CHUNK, max(2048, 2**21 // big.shape[0])))
-        for s in range(0, n, chunk):
-            S = self.scaled(X[:, s : s + chunk])
-            tabs = [chebyshev_table(S[v], degs[v]) for v in range(d)]
-            if d == 1:
-                tabs.append(np.ones((1, S.shape[1])))
-            B = big[:, : tabs[0].shape[0]] @ tabs[0]
-            acc = np.zeros(S.shape[1])
-            for tail, r0, nr in index:
-                val = np.einsum("jn,jn->n", B[r0 : r0 + nr], tabs[1][:nr]) if nr > 1 else B[r0].copy()
-                for v, k in enumerate(tail, start=2):
-                    if k:
-                        val *= tabs[v][k]
-                acc += val
-            out[s : s + chunk] = acc
-        return out
+        return evaluate_shared([self], X)[0]
 
     def to_dict(self) -> dict:
         return {"variables": list(self.variables), "lo": list(self.lo), "hi": list(self.hi),
@@ -199,42 +158,57 @@ class Surface:
 
 
 def evaluate_shared(surfaces: Sequence[Surface], X: np.ndarray) -> list[np.ndarray]:
-    """Values of several surfaces with the same variables, ranges and terms at the points ``X``:
-    the Chebyshev tables are built once and one matrix product serves all of them (the fast path
-    of the corrected form, whose a, delta and p surfaces share their terms)."""
+    """Values of several surfaces with the same variables and ranges at the points ``X``.
+
+    Per chunk of points: the products of the Chebyshev tables of the variables after the first
+    (one row per distinct multi-index ``rest`` of any surface) form ``W``; one matrix product
+    ``[C_1; C_2; ...] @ W`` (rows: each surface's degrees in the first variable) contracts every
+    term but the first variable's, which a final weighted sum over the few rows of its table
+    finishes. The product's inner dimension is the number of ``rest`` indices (hundreds for the
+    tensor surfaces of the corrected form) and its output only ``(surfaces x degree) x chunk``,
+    so it runs at matrix-product speed from cache; chunks of ``CHUNK`` points keep ``W`` in cache.
+    """
     first = surfaces[0]
-    if any((s.variables, s.lo, s.hi, s.terms) != (first.variables, first.lo, first.hi, first.terms)
-           for s in surfaces[1:]):
-        return [s(X) for s in surfaces]
     X = np.asarray(X, dtype=float)
+    if any((s.variables, s.lo, s.hi) != (first.variables, first.lo, first.hi) for s in surfaces[1:]):
+        return [s(X) for s in surfaces]
     d, n = X.shape
-    degs = first.degrees
-    stacks = [s._stacked for s in surfaces]
-    big = np.vstack([b for b, _ in stacks])
-    rows = stacks[0][0].shape[0]
-    index = stacks[0][1]
+    rest = tuple(sorted({r for s in surfaces for r in s._layout[0]}))
+    where = {r: k for k, r in enumerate(rest)}
+    n0 = max(s.degrees[0] for s in surfaces) + 1
+    big = np.zeros((len(surfaces) * n0, len(rest)))
+    for m, s in enumerate(surfaces):
+        rs, C = s._layout
+        big[m * n0 : m * n0 + C.shape[0], [where[r] for r in rs]] = C
+    degs = tuple(max(s.degrees[v] for s in surfaces) for v in range(d))
+    pick = None  # rows of the full tensor that are rest indices (None: all of them, in order)
+    if d > 1:
+        flat = np.ravel_multi_index(np.array(rest).T, tuple(k + 1 for k in degs[1:]))
+        if not np.array_equal(flat, np.arange(np.prod([k + 1 for k in degs[1:]]))):
+            pick = flat
     outs = [np.empty(n) for _ in surfaces]
-    chunk = int(min(CHUNK, max(2048, 2**21 // big.shape[0])))
-    for s0 in range(0, n, chunk):
-        S = first.scaled(X[:, s0 : s0 + chunk])
-        tabs = [chebyshev_table(S[v], degs[v]) for v in range(d)]
-        if d == 1:
-            tabs.append(np.ones((1, S.shape[1])))
-        tails = {}
-        for tail, _, _ in index:
-            f = None
-            for v, k in enumerate(tail, start=2):
-                if k:
-                    f = tabs[v][k] if f is None else f * tabs[v][k]
-            tails[tail] = f
-        B = big[:, : tabs[0].shape[0]] @ tabs[0]
-        for m, out in enumerate(outs):
-            acc = np.zeros(S.shape[1])
-            for tail, r0, nr in index:
-                r = m * rows + r0
-                val = np.einsum("jn,jn->n", B[r : r + nr], tabs[1][:nr]) if nr > 1 else B[r].copy()
-                if tails[tail] is not None:
-                    val *= tails[tail]
-                acc += val
-            out[s0 : s0 + chunk] = acc
+
+    def block(t0: int) -> None:  # tables for many points at once (few Python steps) ...
+        S_all = first.scaled(X[:, t0 : t0 + TABLE_CHUNK])
+        tabs_all = [chebyshev_table(S_all[v], degs[v]) for v in range(d)]
+        for c0 in range(0, S_all.shape[1], CHUNK):  # ... the product in cache-sized pieces
+            _product(big, [t[:, c0 : c0 + CHUNK] for t in tabs_all], pick, n0, outs, t0 + c0)
+
+    for t0 in range(0, n, TABLE_CHUNK):
+        block(t0)
     return outs
+
+
+def _product(big: np.ndarray, tabs: list[np.ndarray], pick: np.ndarray | None, n0: int,
+             outs: list[np.ndarray], s0: int) -> None:
+    """One cache-sized chunk of :func:`evaluate_shared`: ``tabs`` are the Chebyshev tables of
+    its points, the values go to ``outs[m][s0 : s0 + chunk]``."""
+    T0, n = tabs[0], tabs[0].shape[1]
+    W = tabs[1] if len(tabs) > 1 else np.ones((1, n))
+    for T in tabs[2:]:  # the full tensor of the tables of the variables after the first
+        W = (W[:, None, :] * T[None, :, :]).reshape(-1, n)
+    if pick is not None:
+        W = W[pick]
+    B = (big @ W).reshape(len(outs), n0, n)
+    for m, out in enumerate(outs):
+        out[s0 : s0 + n] = np.einsum("in,in->n", B[m], T0)

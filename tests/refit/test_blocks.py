@@ -1,0 +1,54 @@
+"""The refit rule's evaluation in one block per core equals the one-block evaluation (to the
+round-off of the matrix products, whose summation order may depend on the block's size)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from coathertz.refit import ellipse as EL
+from coathertz.refit import load
+from coathertz.refit import rule as R
+
+
+@pytest.fixture
+def small_blocks(monkeypatch):
+    monkeypatch.setattr(R, "PARALLEL_MIN", 1000)  # force blocks on a few thousand points
+    monkeypatch.setattr(R.os, "cpu_count", lambda: 3)  # three uneven blocks even on one core
+
+
+def _inputs(n=5003):
+    rng = np.random.default_rng(3)
+    return (10 ** rng.uniform(-1, 1, n), 10 ** rng.uniform(-3, 1, n), rng.uniform(0, 0.5, n),
+            rng.uniform(0, 0.5, n), 10 ** rng.uniform(0, 1, n))
+
+
+def test_blocks_equal_one_block(small_blocks, monkeypatch):
+    rule = load()
+    E, H, nu_c, nu_s, rho = _inputs()
+    for config, args in (("elastic", (E, H, nu_c, nu_s)), ("rigid", (None, H, nu_c))):
+        got = rule.bars(config, *args)
+        want = rule._bars_function(config)(*args, *(() if config == "elastic" else (0.3,)))
+        for q in want:
+            np.testing.assert_allclose(got[q], want[q], rtol=1e-14, atol=0)
+    got = rule.ellipse_bars(E, H, rho, nu_c, nu_s)
+    monkeypatch.setattr(R, "PARALLEL_MIN", 10**9)  # the same call in one block
+    one = rule.ellipse_bars(E, H, rho, nu_c, nu_s)
+    for q in EL.QUANTITIES:
+        np.testing.assert_allclose(got[q], one[q], rtol=1e-14, atol=0)
+
+
+def test_ellipse_bars_are_the_circular_bars_times_the_correction():
+    """The vectorised ellipse API against its definition (module docstring of refit.ellipse),
+    evaluated term by term through the design matrix."""
+    rule = load()
+    E, H, nu_c, nu_s, rho = (x[:400] for x in _inputs())
+    E = np.clip(E, 0.25, 4.0)  # the ellipse box
+    base = rule.bars("elastic", E, H, nu_c, nu_s)
+    surfs = rule.ellipse_surfaces()
+    got = rule.ellipse_bars(E, H, rho, nu_c, nu_s)
+    X = EL.variables(E, H, rho)
+    for q in EL.QUANTITIES:
+        s = surfs[q]
+        want = base[EL.BASE[q]] * np.exp(EL.prefactor(E, H, rho) * (s.design(X) @ np.array(s.coef)))
+        np.testing.assert_allclose(got[q], want, rtol=1e-12)
