@@ -49,6 +49,12 @@ R = 10e-3
 ES, NU, YS = 200e9, 0.3, 1e9
 CLASSES = ("coating", "interface", "substrate")
 JUDGED = "the Hertz axis stresses (closed form), FE onset search"
+#: (claim id, key, what, Johnson's rounded value, bound [%], bound text, regression tolerance [%])
+HOMOGENEOUS_CLAIMS = (
+    ("yield-onset-homogeneous-p0", "p0_over_Y", "p0/Y at first yield", "1.60", 1.0, "< 1 %", 0.05),
+    ("yield-onset-homogeneous-z", "z_over_a", "depth of first yield z/a", "0.48", 3.0,
+     "< 3 % (coarse mesh; the location converges at first order)", 0.5),
+)
 COLOURS = {"coating": "tab:red", "interface": "tab:purple", "substrate": "tab:blue"}
 
 
@@ -137,28 +143,21 @@ def analyse(result: C.StudyResult) -> None:
         u = mesh_uncertainty(by_id[h["case"]], h, refined, ("p0_over_Y", "z_over_a"))
         result.extra["uncertainty"] = {"homogeneous": u}
         n_a = fem_settings(result.resolution)["n_a"]
-        err_p = 100 * abs(h["p0_over_Y"] / p0_cf - 1)
-        u_p = 100 * u["p0_over_Y"] / p0_cf
-        holds, inconclusive = C.judge("<", err_p, 1.0, u_p)
-        result.claims.append(C.Claim(
-            "yield-onset-homogeneous-p0",
-            f"homogeneous half-space: p0/Y at first yield vs the Hertz axis value {p0_cf:.4f} "
-            "(Johnson: 1.60)",
-            err_p, "< 1 %", holds, "%", 0.05,
-            f"FE p0/Y = {h['p0_over_Y']:.4f}, {n_a} elements across a; at {refined['n_a']}: "
-            f"{u['refined']['p0_over_Y']:.4f}",
-            uncertainty=u_p, inconclusive=inconclusive, judged_against=JUDGED))
-        err_z = 100 * abs(h["z_over_a"] / z_cf - 1)
-        u_z = 100 * u["z_over_a"] / z_cf
-        holds, inconclusive = C.judge("<", err_z, 3.0, u_z)
-        result.claims.append(C.Claim(
-            "yield-onset-homogeneous-z",
-            f"homogeneous half-space: depth of first yield z/a vs the Hertz axis value {z_cf:.4f} "
-            "(Johnson: 0.48)",
-            err_z, "< 3 % (coarse mesh; the location converges at first order)", holds, "%", 0.5,
-            f"FE z/a = {h['z_over_a']:.4f}, r/a = {h['r_over_a']:.3f}; "
-            f"at {refined['n_a']} elements across a: z/a = {u['refined']['z_over_a']:.4f}",
-            uncertainty=u_z, inconclusive=inconclusive, judged_against=JUDGED))
+        exact = {"p0_over_Y": p0_cf, "z_over_a": z_cf}
+        details = {
+            "p0_over_Y": f"FE p0/Y = {h['p0_over_Y']:.4f}, {n_a} elements across a; at {refined['n_a']}: "
+                         f"{u['refined']['p0_over_Y']:.4f}",
+            "z_over_a": f"FE z/a = {h['z_over_a']:.4f}, r/a = {h['r_over_a']:.3f}; "
+                        f"at {refined['n_a']} elements across a: z/a = {u['refined']['z_over_a']:.4f}",
+        }
+        for cid, key, what, johnson, bound, bound_text, tol in HOMOGENEOUS_CLAIMS:
+            err = 100 * abs(h[key] / exact[key] - 1)
+            unc = 100 * u[key] / exact[key]
+            holds, inconclusive = C.judge("<", err, bound, unc)
+            result.claims.append(C.Claim(
+                cid, f"homogeneous half-space: {what} vs the Hertz axis value {exact[key]:.4f} "
+                f"(Johnson: {johnson})", err, bound_text, holds, "%", tol, details[key],
+                uncertainty=unc, inconclusive=inconclusive, judged_against=JUDGED))
     coated = [r for r in rows if r["H"] > 0]
     if coated:
         counts = {c: sum(r["where"] == c for r in coated) for c in CLASSES}
