@@ -304,6 +304,22 @@ def _legacy(step):
     return wrapped
 
 
+def _solve_scheme(scheme, prob: ContactProblem, solver, active0: np.ndarray,
+                  condensed_step) -> ContactSolution:
+    """Run a contact ``scheme`` (:class:`ActiveSet` or :class:`Penalty`): with ``scheme.reuse``, on
+    one condensed factorisation (``condensed_step(cond)`` gives its ``active -> step``); otherwise,
+    or where the condensed factorisation is not available, refactorising with ``scheme._step``."""
+    if scheme.reuse:
+        with blas_threads(1):  # small dense algebra (solvers module docstring)
+            cond = Condensed.build(prob, solver)
+            if cond is not None:
+                step = condensed_step(cond)
+                return _loop(prob, solver, lambda p, s, a: step(a), scheme._update, active0.copy(),
+                             scheme.maxiter, finish=cond.full)
+    _no_extra(prob)
+    return _loop(prob, solver, _legacy(scheme._step), scheme._update, active0.copy(), scheme.maxiter)
+
+
 @dataclass(frozen=True)
 class ActiveSet:
     """Primal-dual active set with Lagrange multipliers (exact constraint)."""
@@ -313,16 +329,7 @@ class ActiveSet:
     reuse: bool = True  # one factorisation per contact problem (condensed solve); False: legacy
 
     def solve(self, prob: ContactProblem, solver, active0: np.ndarray) -> ContactSolution:
-        if not self.reuse:
-            _no_extra(prob)
-            return _loop(prob, solver, _legacy(self._step), self._update, active0.copy(), self.maxiter)
-        with blas_threads(1):  # small dense algebra (solvers module docstring)
-            cond = Condensed.build(prob, solver)
-            if cond is not None:
-                return _loop(prob, solver, lambda p, s, a: cond.step(a), self._update, active0.copy(),
-                             self.maxiter, finish=cond.full)
-        _no_extra(prob)
-        return _loop(prob, solver, _legacy(self._step), self._update, active0.copy(), self.maxiter)
+        return _solve_scheme(self, prob, solver, active0, lambda cond: cond.step)
 
     @staticmethod
     def _step(prob, solver, active):
@@ -355,18 +362,12 @@ class Penalty:
     reuse: bool = True
 
     def solve(self, prob: ContactProblem, solver, active0: np.ndarray) -> ContactSolution:
-        if not self.reuse:
-            _no_extra(prob)
-            return _loop(prob, solver, _legacy(self._step), self._update, active0.copy(), self.maxiter)
-        with blas_threads(1):  # small dense algebra (solvers module docstring)
-            cond = Condensed.build(prob, solver)
-            if cond is not None:
-                with np.errstate(divide="ignore"):
-                    compliance = 1.0 / self._eps(prob, np.ones(len(prob.cand), dtype=bool))
-                return _loop(prob, solver, lambda p, s, a: cond.step(a, compliance), self._update,
-                             active0.copy(), self.maxiter, finish=cond.full)
-        _no_extra(prob)
-        return _loop(prob, solver, _legacy(self._step), self._update, active0.copy(), self.maxiter)
+        def condensed_step(cond):
+            with np.errstate(divide="ignore"):
+                compliance = 1.0 / self._eps(prob, np.ones(len(prob.cand), dtype=bool))
+            return lambda active: cond.step(active, compliance)
+
+        return _solve_scheme(self, prob, solver, active0, condensed_step)
 
     def _eps(self, prob, active):
         return np.where(active, self.beta * prob.E_star * prob.weights / prob.s0, 0.0)

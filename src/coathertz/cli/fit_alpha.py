@@ -51,8 +51,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--train-ellipse", type=int, default=250, help="ellipse training points (+3^d box)")
     parser.add_argument("--valid-ellipse", type=int, default=120, help="ellipse validation points")
     parser.add_argument("--fallback-settings", default='{"rtol": 1e-10}',
-                        help="JSON settings of --method for a second try of cases that fail (the load "
-                             "iteration can stall at ~1e-12, just above the default rtol)")
+                        help="JSON settings of --method for a second try of cases that fail (a safety "
+                             "net: the stall of the exact method's load iteration at ~1e-12 that needed "
+                             "it is now accepted as converged)")
     parser.add_argument("--reuse-sweep", action="append", default=[], metavar="FILE:CONFIG[,CONFIG]",
                         help="take the rows of these configurations from an exported sweep instead of "
                              "solving (e.g. runs/refit/fft128_sweep.json:ellipse)")

@@ -179,7 +179,11 @@ class CorrectedForm:
     patch: dict = field(default_factory=dict)
     ring: dict = field(default_factory=dict)
 
-    def base_log_bar(self, q: str, alpha_model: M.AlphaModel | None, E, H, nu_c, nu_s) -> np.ndarray:
+    def base_log_bar(self, q: str, alpha_model: M.AlphaModel | None, E, H, nu_c, nu_s,
+                     cache: dict | None = None) -> np.ndarray:
+        """``ln`` of the base bar of ``q`` (flattened broadcast shape): the one-alpha refit, or eq
+        (17) at the base's constant alpha. Quantities sharing a constant alpha share one eq (17)
+        through ``cache`` (``ln bar_q = k_q ln(E1*/E_ref)``, eq 1)."""
         E, H, nu_c, nu_s = (a.ravel() for a in np.broadcast_arrays(
             *(np.asarray(0.3 if v is None else v, dtype=float) for v in (E, H, nu_c, nu_s))))
         a0 = self.base.get(q)
@@ -187,18 +191,11 @@ class CorrectedForm:
             if alpha_model is None:
                 raise CoatHertzError("the corrected form's base is the one-alpha refit: pass its model")
             return np.log(alpha_model.bar(q, E, H, nu_c, nu_s))
-        return np.log(M.bar_from_alpha(q, float(a0), E, H, nu_c, nu_s, rigid=self.config == "rigid"))
-
-    def _base_log_bar_cached(self, q, alpha_model, E, H, nu_c, nu_s, cache: dict) -> np.ndarray:
-        """:meth:`base_log_bar` on flattened inputs; quantities whose base is the same constant
-        alpha share one evaluation of eq (17) (``ln bar = k_q ln(E1*/E_ref)``, eq 1)."""
-        a0 = self.base.get(q)
-        if a0 is None:
-            return self.base_log_bar(q, alpha_model, E, H, nu_c, nu_s)
+        cache = {} if cache is None else cache
         key = float(a0)
-        if key not in cache:
-            cache[key] = np.log(M.bar_from_alpha("p", key, E, H, nu_c, nu_s, rigid=self.config == "rigid"))
-            cache[key] /= EXPONENT["p"]  # ln(E1*/E_ref)
+        if key not in cache:  # ln(E1*/E_ref) at this alpha
+            ratio = M.bar_from_alpha("p", key, E, H, nu_c, nu_s, rigid=self.config == "rigid")
+            cache[key] = np.log(ratio) / EXPONENT["p"]
         return EXPONENT[q] * cache[key]
 
     def log_bar(self, q: str, E, H, nu_c=0.3, nu_s=0.3,
@@ -227,7 +224,7 @@ class CorrectedForm:
         out = {}
         ratio_cache: dict = {}
         for q in quantities:
-            base = self._base_log_bar_cached(q, alpha_model, Eb, Hf, nu_cb, nu_sb, ratio_cache)
+            base = self.base_log_bar(q, alpha_model, Eb, Hf, nu_cb, nu_sb, ratio_cache)
             if q in self.patch:
                 beta = smoothstep((X[1] - BLEND_LOG10_E[0]) / (BLEND_LOG10_E[1] - BLEND_LOG10_E[0]))
                 val = base.copy()
