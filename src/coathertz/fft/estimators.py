@@ -52,6 +52,17 @@ def contact_area(p: np.ndarray, grid: Grid) -> float:
     return float(np.count_nonzero(p > 0)) * grid.cell_area
 
 
+def contact_extent(p: np.ndarray, grid: Grid) -> tuple[float, float]:
+    """Half-widths ``(x, y)`` of the cells with ``p > 0``, to their outer edges [m] (0 without
+    contact)."""
+    m = p > 0
+    if not np.any(m):
+        return 0.0, 0.0
+    rows, cols = np.nonzero(m)
+    return (float(np.max(np.abs(grid.x[cols]))) + grid.dx / 2,
+            float(np.max(np.abs(grid.y[rows]))) + grid.dy / 2)
+
+
 def area_radius(p: np.ndarray, grid: Grid) -> float:
     """``a_num = sqrt(S / pi)`` (Section 3)."""
     return math.sqrt(contact_area(p, grid) / math.pi)

@@ -370,11 +370,8 @@ class FFTMethod:
         probe = probe and nested and len(cases) == 1
         if probe:
             p_c, cost = self._coarse_start(cases, grid, be)
-            m = p_c[0] > 0
-            if np.any(m):
-                X, Y = np.meshgrid(grid.x, grid.y)
-                ext = (float(np.max(np.abs(X[m]))) + grid.dx / 2,
-                       float(np.max(np.abs(Y[m]))) + grid.dy / 2)
+            if np.any(p_c[0] > 0):
+                ext = estimators.contact_extent(p_c[0], grid)
                 new = self._refit(ext, estimators.moment_axes(p_c[0], grid), grid)
                 if new is not None:  # start from the probe, interpolated to the new grid
                     p_c = [prolong_pressure(p_c[0], grid, new)]
@@ -424,9 +421,7 @@ class FFTMethod:
                 fit = estimators.edge_fit_axes(p, grid, ra_m, rb_m)
                 fit_name = "pressure-fit"
             ra_f, rb_f = fit if fit is not None else (ra_m, rb_m)
-            m = p > 0
-            ext_x = float(np.max(np.abs(X[m]))) + grid.dx / 2 if np.any(m) else 0.0
-            ext_y = float(np.max(np.abs(Y[m]))) + grid.dy / 2 if np.any(m) else 0.0
+            ext_x, ext_y = estimators.contact_extent(p, grid)
             use_fit = self.radius == "edge-fit" and fit is not None
             ra, rb = (ra_f, rb_f) if use_fit else (ra_m, rb_m)
             i0 = np.unravel_index(int(np.argmax(p)), p.shape)
