@@ -138,7 +138,7 @@ class RectQ2:
         one ``[nel, 9 nq] x [9 nq, 324]`` product (on one BLAS thread). ``lam``, ``mu`` are
         quadrature fields ``[nel, nq]``; ``element_dofs[2 k + c, e]`` as in skfem's ``ElementVector``.
         """
-        from coathertz.fem.solvers import blas_threads
+        from coathertz.blas import blas_threads
 
         r, hr, hz = self.r, self.h_r[:, None], self.h_z[:, None]
         w = 2 * np.pi * r * np.abs(hr * hz) * self.W

@@ -48,8 +48,8 @@ import scipy.sparse as sp
 from numpy.linalg import LinAlgError
 from scipy.linalg import cho_factor, cho_solve
 
+from coathertz.blas import blas_threads
 from coathertz.errors import ConvergenceError
-from coathertz.fem.solvers import blas_threads
 
 
 @dataclass

@@ -15,7 +15,7 @@
 
 Each solver counts its work in ``stats`` (factorisations, solves, CG iterations).
 
-BLAS threads (:func:`blas_threads`): the condensed contact solve runs its dense algebra (the
+BLAS threads (:func:`coathertz.blas.blas_threads`): the condensed contact solve runs its dense algebra (the
 candidates' compliance, ~200 x 200, and the triangular solves) on one thread; only the sparse
 factorisation keeps the library's threads. Measured on the shared 2-core machine: inverting the
 173 x 173 Schur complement of Keer case A takes 1 ms on one thread and 80-150 ms on two when the
@@ -24,7 +24,6 @@ other core is busy (OpenBLAS threads wait for each other), a triangular solve 15
 
 from __future__ import annotations
 
-import contextlib
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -32,22 +31,9 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from coathertz.blas import blas_threads
 from coathertz.errors import ConvergenceError
 from coathertz.fem.ordering import nested_dissection
-
-_BLAS: list = []  # [ThreadpoolController of the BLAS libraries, their default thread count]
-
-
-def blas_threads(n: int | None) -> contextlib.AbstractContextManager:
-    """Run a block with BLAS limited to ``n`` threads (``None``: the libraries' default, e.g.
-    inside a block limited to one); ``threadpoolctl``, the controller built once per process."""
-    if not _BLAS:
-        from threadpoolctl import ThreadpoolController
-
-        ctl = ThreadpoolController().select(user_api="blas")
-        _BLAS.extend([ctl, max([c["num_threads"] for c in ctl.info()], default=1)])
-    ctl, default = _BLAS
-    return ctl.limit(limits=default if n is None else n)
 
 
 def _delay_zero_pivots(A: sp.csr_matrix, order: np.ndarray, is_last: np.ndarray) -> np.ndarray:

@@ -23,6 +23,7 @@ from coathertz.axisym.solver import (
     pressure_shape,
     solve_load,
 )
+from coathertz.blas import blas_threads
 from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError
 from coathertz.results import ContactResult
@@ -32,26 +33,11 @@ ModelValidityWarning = getattr(errors, "ModelValidityWarning", UserWarning)
 #: a/R above which the half-space (small-strain) model is flagged.
 VALIDITY_A_OVER_R = 0.1
 
-_CONTROLLER: Any = None
-
-
 def single_thread_blas() -> contextlib.AbstractContextManager:
-    """Pin BLAS/LAPACK to one thread while solving (``threadpoolctl``, if installed).
-
-    The Galerkin systems are at most ~160 x 160 and the xi products ~160 x 10^4: threaded BLAS
-    only adds wake-up and contention costs (measured on the 2 shared cores: ~480 ms per case
-    with the default threads against ~10 ms with one).
-    """
-    global _CONTROLLER
-    try:
-        from threadpoolctl import ThreadpoolController
-    except ImportError:  # pragma: no cover - optional
-        return contextlib.nullcontext()
-    if _CONTROLLER is None:
-        import scipy.linalg  # noqa: F401 - load scipy's BLAS before the controller looks for it
-
-        _CONTROLLER = ThreadpoolController()
-    return _CONTROLLER.limit(limits=1, user_api="blas")
+    """Pin BLAS/LAPACK to one thread while solving (:func:`coathertz.blas.blas_threads`): the
+    Galerkin systems are at most ~160 x 160 and the xi products ~160 x 10^4, where threaded BLAS
+    only adds wake-up and contention costs (~480 ms per case against ~10 ms with one thread)."""
+    return blas_threads(1)
 
 
 N_MIN, N_MAX = 16, 160

@@ -9,7 +9,6 @@ range warnings.
 
 from __future__ import annotations
 
-import contextlib
 import dataclasses
 import json
 import math
@@ -23,6 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
+from coathertz.blas import blas_threads
 from coathertz.errors import CoatHertzError, FittedRangeWarning
 from coathertz.refit import ellipse as EL
 from coathertz.refit import model as M
@@ -315,15 +315,6 @@ def in_blocks(fn, *args) -> dict[str, np.ndarray]:
     def block(k: int) -> dict[str, np.ndarray]:
         return fn(*(None if v is None else f[cuts[k] : cuts[k + 1]] for v, f in zip(args, flat, strict=True)))
 
-    with _single_thread_blas(), ThreadPoolExecutor(threads) as pool:
+    with blas_threads(1), ThreadPoolExecutor(threads) as pool:
         parts = list(pool.map(block, range(threads)))
     return {q: np.concatenate([p[q] for p in parts]) for q in parts[0]}
-
-
-def _single_thread_blas() -> contextlib.AbstractContextManager:
-    """BLAS pinned to one thread (``threadpoolctl``, when installed) while the blocks run."""
-    try:
-        from threadpoolctl import threadpool_limits
-    except ImportError:  # pragma: no cover - optional
-        return contextlib.nullcontext()
-    return threadpool_limits(limits=1, user_api="blas")
