@@ -63,14 +63,18 @@ def nd_lu(A: sp.spmatrix, grid: tuple[np.ndarray, np.ndarray],
     preferred (``A`` structurally symmetric, e.g. a tangent stiffness). Measured on the plastic
     benchmark's tangent (28.7k unknowns, 1 BLAS thread): about half the factorisation time of
     SuperLU's minimum degree on ``A + A^T``."""
-    n = A.shape[0]
     perm = nested_dissection(grid[0], grid[1])
-    Ap = sp.csc_matrix(sp.csr_matrix(A)[perm][:, perm])
-    lu = spla.splu(Ap, permc_spec="NATURAL", diag_pivot_thresh=diag_pivot_thresh,
+    return _lu_in_order(sp.csr_matrix(A)[perm][:, perm], perm, diag_pivot_thresh)[1]
+
+
+def _lu_in_order(Ap: sp.spmatrix, perm: np.ndarray, diag_pivot_thresh: float):
+    """SuperLU of ``Ap = A[perm][:, perm]`` in that order (no column reordering, diagonal pivots
+    preferred) and ``b -> A^{-1} b`` in ``A``'s numbering."""
+    lu = spla.splu(sp.csc_matrix(Ap), permc_spec="NATURAL", diag_pivot_thresh=diag_pivot_thresh,
                    options={"SymmetricMode": True})
-    inv = np.empty(n, dtype=np.int64)
-    inv[perm] = np.arange(n)
-    return lambda b: lu.solve(b[perm])[inv]
+    inv = np.empty(len(perm), dtype=np.int64)
+    inv[perm] = np.arange(len(perm))
+    return lu, lambda b: lu.solve(b[perm])[inv]
 
 
 @dataclass
@@ -109,20 +113,17 @@ class CondensedFactor:
         if np.any(K.diagonal()[keep] == 0):  # mixed u-p: the pressure pivots (rare path)
             nd = _delay_zero_pivots(sp.csr_matrix(K)[keep][:, keep], nd, is_last)
         perm = np.concatenate([nd, last])
-        Ap = sp.csc_matrix(sp.csr_matrix(K)[keep[perm]][:, keep[perm]])
         with blas_threads(None):  # the supernodal updates may use the library's threads
-            lu = spla.splu(Ap, permc_spec="NATURAL", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
+            lu, lu_solve = _lu_in_order(sp.csr_matrix(K)[keep[perm]][:, keep[perm]], perm, 0.0)
         stats["factorisations"] += 1
         if not (np.array_equal(lu.perm_r, np.arange(n)) and np.array_equal(lu.perm_c, np.arange(n))):
             raise ValueError("SuperLU reordered the condensed factorisation")
         m = n - len(last)
         S = lu.L[m:, m:] @ lu.U[m:, m:]
-        inv = np.empty(n, dtype=np.int64)
-        inv[perm] = np.arange(n)
 
         def solve(b: np.ndarray) -> np.ndarray:
             stats["solves"] += 1
-            return lu.solve(b[perm])[inv]
+            return lu_solve(b)
 
         return cls(np.asarray(S.todense()), solve)
 
