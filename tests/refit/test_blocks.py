@@ -52,3 +52,14 @@ def test_ellipse_bars_are_the_circular_bars_times_the_correction():
         s = surfs[q]
         want = base[EL.BASE[q]] * np.exp(EL.prefactor(E, H, rho) * (s.design(X) @ np.array(s.coef)))
         np.testing.assert_allclose(got[q], want, rtol=1e-12)
+
+
+@pytest.mark.parametrize("E, H, rho, match", [
+    (-1.0, 0.1, 2.0, "0 < E < inf"), (1.0, 0.0, 2.0, "H must be > 0"),
+    (1.0, 0.1, 0.5, "finite and >= 1"), (2.0, 0.1, float("inf"), "finite and >= 1"),
+])
+def test_ellipse_bars_reject_bad_input(E, H, rho, match):
+    from coathertz.errors import CoatHertzError
+
+    with pytest.raises(CoatHertzError, match=match):
+        load().ellipse_bars(E, H, rho)

@@ -41,8 +41,8 @@ def weight(H) -> np.ndarray:
 
 def variables(E, H, rho) -> np.ndarray:
     E, H, rho = (np.asarray(v, dtype=float).ravel() for v in np.broadcast_arrays(E, H, rho))
-    if np.any(~(rho >= 1.0)):
-        raise CoatHertzError("rho = Rx/Ry must be >= 1 (Rx the larger relative radius)")
+    if np.any(~((rho >= 1.0) & np.isfinite(rho))):
+        raise CoatHertzError("rho = Rx/Ry must be finite and >= 1 (Rx the larger relative radius)")
     return np.vstack([np.log10(H), np.log10(E), np.log10(rho)])
 
 
