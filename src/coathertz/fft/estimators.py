@@ -19,12 +19,24 @@
   (elastic substrate E = 1/4, 4 and H = 0.01-3, rigid substrate nu_c = 0.3-0.5 and
   H = 0.05-3, bonded and frictionless; 24 coated cases), on grids re-fitted to the contact
   (:mod:`coathertz.fft.grid`): max |error| 0.36 % at n = 64, 0.128 % at 128, 0.024 % at
-  256, observed order about 2. The one case above 0.1 % at n = 128 is a stiff coating half
-  a cell thick (E = 4, H = 0.01: +0.128 %; frictionless +0.137 %; E = 2: +0.089 %); the
-  others are within 0.051 %. There the gap just outside the edge is that of the substrate
-  with the layer's boundary layer (width ~h) inside one cell, and the fit on the exact gap
-  itself is +0.056 % off: neither the fit nor an alias-free cell integral of the layer
-  remainder (tried: +0.115 %) removes it; it falls to 0.024 % at n = 256 (h = one cell).
+  256, observed order about 2. Over 55 more thin cases (E = 1/4-4, H = 0.01-0.03, bonded
+  and frictionless) the error is at most 0.067 % at n = 128 where the coating spans a cell
+  or more, and 0.037 % at n = 256. A coating thinner than a cell is the limit: its edge
+  boundary layer (width ~h; the exact pressure rises from 0.01 to 0.08 p0 within 0.04 cells
+  of the edge at E = 4, H = 0.01) lies inside the cell next to the edge, and stiff coatings
+  are then off by up to +0.169 % at n = 128 (bonded E = 4, h = 0.64 cells; frictionless
+  E = 3, h = 0.51 cells: +0.160 %). The fit on the *exact* gap sampled at the same cells is
+  already +0.044 % off there, and the grid's own gap is 2-10 % high within a cell of the
+  edge. Tried without success for that regime (E = 4, H = 0.01 at n = 128 in brackets):
+  other bands and degrees (+0.118 to +0.25 %), a joint
+  fit of ``p^2`` inside and ``g^{2/3}`` outside with one root (+0.156 %), a global fit of
+  ``sqrt(1 - r^2/a^2)`` times a polynomial (ill-conditioned, up to 1.7 %), Richardson with
+  the grid of cells twice as large (+0.015 %, but +0.118 % on frictionless and +0.101 % on
+  bonded E = 3, H = 0.01), an alias-free cell integral of the layer remainder (+0.115 %),
+  smaller margins, and a plane-strain 1-D emulation of the grid's edge bias (predicted
+  +0.23 % where the 3-D grid gives +0.128 %). :class:`~coathertz.fft.method.FFTMethod`
+  therefore flags such results (``LAYER_CELLS_MIN``) and names the ``n`` that resolves the
+  coating.
   Ellipses: a fit in a sector around each axis (the gap's
   intensity varies along the edge); Hertz ellipse with dy = dx/3 at n = 128: r_a +0.02 %,
   r_b +0.05 % (the ``p^2`` fit with the moment shape: -0.18 %, +0.19 %).

@@ -24,8 +24,8 @@ new estimate (or touches the boundary). The radius thus gets at least
 The error of the sub-cell radius falls like the square of the cell size, so this uniform
 resolution matters: with the former ``REFIT_BELOW = 0.5`` (radii with 26-51 cells at
 n = 128) the largest error in ``a`` over 23 of the 24 coated cases of
-``tests/fft/test_radius.py`` was 0.103 %, with 0.9 it is 0.051 % (the 24th, h = half a cell,
-is limited by the layer).
+``tests/fft/test_radius.py`` was 0.103 %, with 0.9 it is 0.051 % (the 24th, a coating half a
+cell thick, is limited by the layer: see :data:`coathertz.fft.method.LAYER_CELLS_MIN`).
 
 Anisotropic spacing
 -------------------
