@@ -11,9 +11,19 @@ NAME = "fft"
 HELP = "DC-FFT contact solution of one case (delta, a, p0, iterations, residual)"
 
 
+def _layer_cells(text: str) -> float | None:
+    if text.strip().lower() == "off":
+        return None
+    try:
+        return float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number of cells or 'off', got {text!r}") from None
+
+
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     from coathertz.fft.frf import INTERFACES
     from coathertz.fft.grid import DEFAULT_N
+    from coathertz.fft.method import LAYER_CELLS_MIN
 
     add_case_arguments(parser)
     parser.add_argument("--grid", type=int, default=None, metavar="N",
@@ -22,6 +32,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help=f"coating/substrate interface (default: {INTERFACES[0]}, the paper's model)")
     parser.add_argument("--spacing-ratio", type=float, default=None,
                         help="dy/dx (default: r_b/r_a; the paper's ellipses use 1/3)")
+    parser.add_argument("--layer-cells", type=_layer_cells, default=LAYER_CELLS_MIN, metavar="C|off",
+                        help="cells the thinnest coating must span for the sub-cell radius; a "
+                             "thinner one is solved again on a finer grid (default "
+                             f"{LAYER_CELLS_MIN:g}; off: the grid N as given, flagged)")
     parser.add_argument("--json", action="store_true", help="machine-readable output")
     add_fields_argument(parser, "x, y, pressure and displacement arrays")
 
@@ -48,6 +62,7 @@ def run(args: argparse.Namespace) -> int:
         n=DEFAULT_N if args.grid is None else args.grid,
         interface=args.interface,
         spacing_ratio=args.spacing_ratio,
+        layer_cells=args.layer_cells,
     )
     res = finish(case, method.solve(case))
     save_fields(args.save_fields, res)
@@ -59,6 +74,10 @@ def run(args: argparse.Namespace) -> int:
     print(f"  grid {g['nx']} x {g['ny']}, dx = {g['dx'] * 1e6:.4g} um, dy = {g['dy'] * 1e6:.4g} um;"
           f" {m['iterations']} CG iterations, residual {m['residual']:.1e},"
           f" {m['wall_time'] * 1e3:.0f} ms")
+    if "layer_refinement" in m:
+        lr = m["layer_refinement"]
+        print(f"  grid refined from {lr['n_requested']} to {lr['n']}: the coating spanned "
+              f"{lr['layer_cells_before']:.2g} cells (a there: {lr['a_before'] * 1e6:.5g} um)")
     rows = [
         ["delta [um]", f"{res.delta * 1e6:.5g}", f"{res.delta / norm.delta0:.5f}"],
         [f"a [um] ({m['radius_estimator']})", f"{res.a * 1e6:.5g}", f"{res.a / norm.a0:.5f}"],

@@ -11,7 +11,9 @@ A solve without a warm start begins from the solution on the grid with cells twi
 of the kernel (:meth:`~coathertz.fft.solver.Convolver.precondition`). The contact radius is the
 sub-cell closing
 of the gap outside the contact (:func:`~coathertz.fft.estimators.gap_fit_axes`); the paper's
-``sqrt(S/pi)`` stays in ``meta["a_num"]``.
+``sqrt(S/pi)`` stays in ``meta["a_num"]``. A coating thinner than a cell is resolved by
+solving the case again with finer cells on the same domain (``layer_cells``,
+``meta["layer_refinement"]``).
 
 For sweeps use :meth:`FFTMethod.solve_many` (or :func:`solve_many`): cases sharing a grid (in the
 fig-3 study every ``H`` of one modulus ratio does: the grid depends only on ``a0s`` and ``a0c``)
@@ -39,6 +41,7 @@ from coathertz.fft.frf import INTERFACES
 from coathertz.fft.grid import (
     DEFAULT_MARGIN,
     DEFAULT_N,
+    N_MAX,
     REFIT_BELOW,
     RESOLVE_BELOW,
     Grid,
@@ -73,9 +76,13 @@ NESTED_TOL = 3e-3
 #: n = 128 over E = 1/4-4 and h/a0s = 0.01-0.03, bonded and frictionless (tests/fft/
 #: test_radius.py): max |error in a| 0.067 % with h >= 1 cell, but up to +0.169 % below
 #: (stiff coatings: bonded E = 4, h = 0.64 cells; frictionless E = 3, h = 0.51 cells: +0.160 %);
-#: at n = 256, where h >= 1 cell in all of them, 0.037 %. The result then says so (warning,
+#: at n = 256, where h >= 1 cell in all of them, 0.037 %. ``FFTMethod(layer_cells=...)``
+#: therefore refines such cases by default; a result left below says so (warning,
 #: ``meta["accuracy"]``).
 LAYER_CELLS_MIN = 1.0
+#: The refinement for a thin coating (``FFTMethod.layer_cells``) goes up to this many times
+#: the requested ``n`` (beyond, the result says how far ``a`` can be off).
+LAYER_N_FACTOR = 4
 #: The largest measured |error in a| below ``LAYER_CELLS_MIN`` (see above), quoted in the note.
 SUB_CELL_RADIUS_ERROR = 0.0017
 #: Coarse levels with at least this many cells per side are preconditioned too (it saved up
@@ -160,6 +167,14 @@ class FFTMethod:
         (exact for Hertz, :func:`~coathertz.fft.estimators.edge_fit_axes`) for circular
         contacts of uncoated bodies (or bonded coatings identical to their substrates);
         ``meta["radius_estimator"]`` names the one used (``area`` where the fit failed).
+    layer_cells
+        Cells the thinnest coating must span for the sub-cell radius (default
+        ``LAYER_CELLS_MIN = 1``; ``None``: off). Where it spans fewer, the case is solved again
+        on the same domain with the ``n`` that gives it that many (at most ``LAYER_N_FACTOR n``,
+        from the grid solution prolonged), and ``meta["layer_refinement"]`` records it:
+        below a cell the coating's edge boundary layer lies inside one cell and no fit of the
+        grid solution recovers ``a`` to 0.1 % (see :data:`LAYER_CELLS_MIN`). Where even that
+        ``n`` is not enough the result carries a warning and ``meta["accuracy"]``.
     backend, workers
         ``numpy`` or ``cupy``; ``workers`` FFT threads (``None``: by grid size, see
         :func:`~coathertz.fft.solver.default_workers`: 1 up to n = 256 and in the worker
@@ -180,7 +195,9 @@ class FFTMethod:
     def settings_for(cls, resolution: str) -> dict[str, Any]:
         """The paper's 128 x 128 grid (32 at ``tiny``); one FFT thread (the runner supplies
         the parallelism), no fields kept."""
-        return {"n": 32 if resolution == "tiny" else 128, "keep_fields": False, "workers": 1}
+        tiny = resolution == "tiny"
+        return {"n": 32 if tiny else 128, "keep_fields": False, "workers": 1,
+                **({"layer_cells": None} if tiny else {})}
 
     @classmethod
     def refined_settings(cls, resolution: str) -> dict[str, Any]:
@@ -201,6 +218,7 @@ class FFTMethod:
     backend: str = "numpy"
     workers: int | None = None
     keep_fields: bool = True
+    layer_cells: float | None = LAYER_CELLS_MIN
     name: str = "fft"
 
     def __post_init__(self) -> None:
@@ -213,6 +231,10 @@ class FFTMethod:
             raise CoatHertzError(f"precondition must be True or False, got {self.precondition!r}")
         if not (isinstance(self.tol, float | int) and 0 < self.tol < 1e-2):
             raise CoatHertzError(f"tol must satisfy 0 < tol < 1e-2, got {self.tol!r}")
+        lc = self.layer_cells
+        if lc is not None and not (isinstance(lc, float | int) and not isinstance(lc, bool)
+                                   and 0.1 <= lc <= 8.0):
+            raise CoatHertzError(f"layer_cells must be None or a number in [0.1, 8], got {lc!r}")
         get_backend(self.backend, self.fft_workers())
 
     def fft_workers(self) -> int:
@@ -284,10 +306,11 @@ class FFTMethod:
                 )
                 if adaptive:
                     res = [self._adapt(cases[i], r) for i, r in zip(chunk, res, strict=True)]
+                if warm_start and batch == 1:  # the next case starts on this grid, not a refined one
+                    prev = (res[0], Grid(**res[0].meta["grid"]))
+                res = [self._resolve_layer(cases[i], r) for i, r in zip(chunk, res, strict=True)]
                 for i, r in zip(chunk, res, strict=True):
                     self._resolution_note(cases[i], r)
-                if warm_start and batch == 1:
-                    prev = (res[0], Grid(**res[0].meta["grid"]))
                 for i, r in zip(chunk, res, strict=True):
                     out[i] = r if self.keep_fields else dataclasses.replace(r, fields={})
         return out  # type: ignore[return-value]
@@ -309,22 +332,47 @@ class FFTMethod:
             r.meta["regridded"] = True
         return r
 
+    def _resolve_layer(self, case: ContactCase, r: ContactResult) -> ContactResult:
+        """``r``, or the case solved again on a grid on which its thinnest coating spans
+        ``layer_cells`` cells (same domain, finer cells; see the ``layer_cells`` parameter)."""
+        if self.layer_cells is None or r.meta["radius_estimator"] != "gap-fit":
+            return r
+        g = Grid(**r.meta["grid"])
+        cells = _layer_cells(case, g)
+        if cells >= self.layer_cells:
+            return r
+        n_fine = _n_for_cells(self.n, cells, self.layer_cells)
+        if n_fine > min(N_MAX, LAYER_N_FACTOR * self.n):
+            return r  # left to the note
+        dx = g.half_widths[0] / (n_fine // 2 - 0.5)
+        fine = Grid(n_fine, n_fine, dx, dx * g.dy / g.dx)
+        p_start = prolong_pressure(r.fields["pressure"], g, fine)
+        finer = dataclasses.replace(self, n=n_fine, layer_cells=None)
+        rf = finer._solve_batch([case], fine, p_start)[0]
+        # the cost in transform pairs of the fine grid: one on the requested grid is about
+        # (n / n_fine)^2 of one there
+        rf.meta["pair_equivalents_total"] += r.meta["pair_equivalents_total"] * (self.n / n_fine) ** 2
+        rf.meta["regridded"] = bool(r.meta["regridded"])
+        rf.meta["wall_time"] += r.meta["wall_time"]
+        rf.meta["layer_refinement"] = {
+            "n_requested": self.n, "n": n_fine, "layer_cells_before": cells,
+            "a_before": r.a, "r_a_before": r.r_a, "r_b_before": r.r_b,
+        }
+        return rf
+
     def _resolution_note(self, case: ContactCase, r: ContactResult) -> None:
         """Record ``meta["layer_cells"]`` (thinnest coating over the cell size) and, where the
         coating is thinner than ``LAYER_CELLS_MIN`` cells and the radius is the sub-cell fit,
         warn and say in ``meta["accuracy"]`` how far ``a`` can be off (see
         :data:`LAYER_CELLS_MIN`)."""
         grid = Grid(**r.meta["grid"])
-        h = min((b.coating.h for b in (case.body1, case.body2)
-                 if b.coating is not None and b.coating.h > 0), default=math.inf)
-        cells = h / min(grid.dx, grid.dy)
+        cells = _layer_cells(case, grid)
         r.meta["layer_cells"] = cells if math.isfinite(cells) else None
         if cells >= LAYER_CELLS_MIN or r.meta["radius_estimator"] != "gap-fit":
             return
-        # the cell shrinks like 1 / (n/2 - 1/2) on the same domain
-        n_need = 2 * math.ceil((self.n / 2 - 0.5) * LAYER_CELLS_MIN / cells + 0.5)
-        msg = (f"fft: the coating is {cells:.2g} cells thick (h = {h:.4g} m, cell "
-               f"{grid.dx:.4g} m): its edge boundary layer is below the cell, and the sub-cell "
+        n_need = _n_for_cells(grid.nx, cells, LAYER_CELLS_MIN)
+        msg = (f"the coating is {cells:.2g} cells thick (h = {_thinnest(case):.4g} m, cell "
+               f"{max(grid.dx, grid.dy):.4g} m): its edge boundary layer is below the cell, and the sub-cell "
                f"radius can be off by up to {SUB_CELL_RADIUS_ERROR:.2%} (measured, E 1/4-4 at "
                f"n = 128); n >= {n_need} resolves it (delta and p0 are not affected)")
         warnings.warn(msg, UserWarning, stacklevel=3)
@@ -511,6 +559,23 @@ class FFTMethod:
                 )
             )
         return results
+
+
+def _thinnest(case: ContactCase) -> float:
+    """Thickness of the thinnest coating of the pair [m] (``inf`` without coatings)."""
+    return min((b.coating.h for b in (case.body1, case.body2)
+                if b.coating is not None and b.coating.h > 0), default=math.inf)
+
+
+def _layer_cells(case: ContactCase, grid: Grid) -> float:
+    """Cells across the thinnest coating (the larger cell side; ``inf`` without coatings)."""
+    return _thinnest(case) / max(grid.dx, grid.dy)
+
+
+def _n_for_cells(n: int, cells: float, target: float) -> int:
+    """Even ``n`` on the same domain (cell ~ 1 / (n/2 - 1/2)) with ``target`` cells across a
+    coating that spans ``cells`` at ``n``."""
+    return 2 * math.ceil((n / 2 - 0.5) * target / cells + 0.5)
 
 
 def prolong_pressure(pc: np.ndarray, coarse: Grid, fine: Grid) -> np.ndarray:
