@@ -110,3 +110,17 @@ def test_domain_grows_when_contact_touches_the_margin():
     ref = M.solve(case)
     assert r.delta == pytest.approx(ref.delta, rel=1e-3)
     assert r.p0 == pytest.approx(ref.p0, rel=1e-3)
+
+
+def test_very_stiff_thin_coating_delta_against_the_exact_method():
+    """E = 10, H = 0.04 (outside the paper's range; the refit study's spot checks): the layer
+    factor's pole at t = -0.05 spoiled the Taylor split with a fixed Cauchy radius, and delta
+    was off by +0.15 % at n = 64-128 (h = 1-2 cells), but not at 256 (the other branch).
+    Reference: the exact axisymmetric method, delta = 1.0235865803452915e-07 m."""
+    from coathertz.fft.method import FFTMethod
+
+    from .conftest import coated
+
+    errs = {n: FFTMethod(n=n, workers=1).solve(coated(10.0, 0.039811)).delta / 1.0235865803452915e-07 - 1
+            for n in (64, 128)}
+    assert max(abs(e) for e in errs.values()) < 1e-4, f"delta errors {errs} (measured -4.4e-5, -7.1e-6)"

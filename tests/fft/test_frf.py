@@ -68,3 +68,38 @@ def test_bad_interface():
         Layer(Material(1e9, 0.3), RIGID, "glued")
     with pytest.raises(CoatHertzError, match="interface"):
         layer_factor_tm(T, Material(1e9, 0.3), RIGID, "glued")
+
+
+@pytest.mark.parametrize("E_ratio", [4.0, 10.0])
+def test_taylor_coefficients_of_a_stiff_coating_with_a_pole_near_zero(E_ratio):
+    """The layer factor of a stiff coating has a pole at t = -0.13 (E = 4) or -0.05 (E = 10):
+    a fixed Cauchy radius of 0.1 gave F(0) = 9.18 for 10. The halving radius must give
+    F(0) = Ec*/Es* and a series that matches F on the real axis to O(t^3)."""
+    from coathertz.fft.influence import LayerSplit
+
+    s = Material(200e9, 0.3)
+    co = Material(E_ratio * s.E_star * (1 - 0.09), 0.3)
+    layer = Layer(co, s)
+    c = taylor_coefficients(layer.factor, n=3, radius=0.1, m=48)
+    assert c[0] == pytest.approx(E_ratio, rel=1e-12)
+    t = np.array([1e-3, 2e-3])
+    resid = layer.factor(t) - (c[0] + c[1] * t + c[2] * t * t)
+    ratio = resid[1] / resid[0]  # O(t^3): 8
+    assert ratio == pytest.approx(8.0, rel=0.05), (resid, ratio)
+    # the split's remainder is O(t^2) (it was -16 at t -> 0 for E = 10)
+    sp = LayerSplit.of(layer)
+    r = sp.remainder(np.array([1e-4, 2e-4])) / np.array([1e-4, 2e-4]) ** 2
+    assert r[1] == pytest.approx(r[0], rel=0.05), r
+
+
+@pytest.mark.parametrize("pole", [0.02, 0.004])
+def test_taylor_coefficients_see_a_pole_inside_the_first_circle(pole):
+    """A pole well inside the circle (both 0.1 and 0.05 enclose 0.02) leaves the Cauchy
+    integrals of successive circles in agreement but wrong; the series check catches it."""
+    c = taylor_coefficients(lambda z: 1.0 / (z + pole), n=3, radius=0.1)
+    np.testing.assert_allclose(c, [1 / pole, -1 / pole**2, 1 / pole**3], rtol=1e-9)
+
+
+def test_taylor_coefficients_refuse_a_singularity_at_the_origin():
+    with pytest.raises(CoatHertzError, match="did not converge"):
+        taylor_coefficients(lambda z: 1.0 / (z + 1e-6), n=2)
