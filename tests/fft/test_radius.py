@@ -311,3 +311,16 @@ def test_radius_thin_coatings_slow():
         worst[n] = max(resolved + sub)[0]
     order = math.log2(worst[128] / worst[256])
     assert order >= 1.5, f"max |error| {worst}, observed order {order:.2f}"
+
+
+def test_a_grid_given_by_the_caller_is_kept_and_flagged():
+    from coathertz.fft.grid import Grid
+
+    m = FFTMethod(n=128, workers=1)
+    case = coated(4.0, 0.0125)
+    g = Grid(**m.solve(case).meta["grid"])  # the refined grid: the coating spans a cell
+    assert g.nx > 128
+    coarse = Grid(128, 128, g.dx * (g.nx / 2 - 0.5) / 63.5, g.dy * (g.ny / 2 - 0.5) / 63.5)
+    with pytest.warns(UserWarning, match="cells thick"):
+        r = m.solve(case, grid=coarse)
+    assert r.meta["grid"]["nx"] == 128 and "layer_refinement" not in r.meta and "accuracy" in r.meta

@@ -174,7 +174,8 @@ class FFTMethod:
         from the grid solution prolonged), and ``meta["layer_refinement"]`` records it:
         below a cell the coating's edge boundary layer lies inside one cell and no fit of the
         grid solution recovers ``a`` to 0.1 % (see :data:`LAYER_CELLS_MIN`). Where even that
-        ``n`` is not enough the result carries a warning and ``meta["accuracy"]``.
+        ``n`` is not enough, or the caller gave the grid, the result carries a warning and
+        ``meta["accuracy"]``.
     backend, workers
         ``numpy`` or ``cupy``; ``workers`` FFT threads (``None``: by grid size, see
         :func:`~coathertz.fft.solver.default_workers`: 1 up to n = 256 and in the worker
@@ -308,7 +309,8 @@ class FFTMethod:
                     res = [self._adapt(cases[i], r) for i, r in zip(chunk, res, strict=True)]
                 if warm_start and batch == 1:  # the next case starts on this grid, not a refined one
                     prev = (res[0], Grid(**res[0].meta["grid"]))
-                res = [self._resolve_layer(cases[i], r) for i, r in zip(chunk, res, strict=True)]
+                if grid is None:  # a grid given by the caller is kept (and flagged if too coarse)
+                    res = [self._resolve_layer(cases[i], r) for i, r in zip(chunk, res, strict=True)]
                 for i, r in zip(chunk, res, strict=True):
                     self._resolution_note(cases[i], r)
                 for i, r in zip(chunk, res, strict=True):
