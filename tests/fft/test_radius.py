@@ -324,3 +324,17 @@ def test_a_grid_given_by_the_caller_is_kept_and_flagged():
     with pytest.warns(UserWarning, match="cells thick"):
         r = m.solve(case, grid=coarse)
     assert r.meta["grid"]["nx"] == 128 and "layer_refinement" not in r.meta and "accuracy" in r.meta
+
+
+def test_a_much_stiffer_coating_needs_one_and_a_half_cells():
+    """E = 10 (outside the paper's range), H = 0.02: the coating spans 1.02 cells at n = 128
+    and a is off by +0.195 % there; coatings more than 4 times stiffer than their substrate
+    get 1.5 cells (n = 190 here): +0.046 %. Exact a: 3.128466981798888e-05 m (the exact
+    method; its refined settings agree to 5e-11)."""
+    case = coated(10.0, 0.02)
+    with pytest.warns(UserWarning, match=r"fewer than the 1\.5 .*Ec\*/Es\* = 10"):
+        raw = FFTMethod(n=128, workers=1, layer_cells=None).solve(case)
+    r = FFTMethod(n=128, workers=1).solve(case)
+    errs = [x.a / 3.128466981798888e-05 - 1 for x in (raw, r)]
+    assert r.meta["layer_refinement"]["n"] == 190 and r.meta["layer_cells"] >= 1.5, r.meta["layer_refinement"]
+    assert abs(errs[0]) > 1.5e-3 and abs(errs[1]) < 1e-3, f"a errors raw / refined {errs}"

@@ -33,8 +33,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--spacing-ratio", type=float, default=None,
                         help="dy/dx (default: r_b/r_a; the paper's ellipses use 1/3)")
     parser.add_argument("--layer-cells", type=_layer_cells, default=LAYER_CELLS_MIN, metavar="C|off",
-                        help="cells the thinnest coating must span for the sub-cell radius; a "
-                             "thinner one is solved again on a finer grid (default "
+                        help="cells the thinnest coating must span for the sub-cell radius "
+                             "(1.5 times that for a coating over 4 times stiffer than its "
+                             "substrate); a thinner one is solved again on a finer grid (default "
                              f"{LAYER_CELLS_MIN:g}; off: the grid N as given, flagged)")
     parser.add_argument("--json", action="store_true", help="machine-readable output")
     add_fields_argument(parser, "x, y, pressure and displacement arrays")

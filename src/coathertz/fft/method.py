@@ -83,8 +83,16 @@ LAYER_CELLS_MIN = 1.0
 #: The refinement for a thin coating (``FFTMethod.layer_cells``) goes up to this many times
 #: the requested ``n`` (beyond, the result says how far ``a`` can be off).
 LAYER_N_FACTOR = 4
-#: The largest measured |error in a| below ``LAYER_CELLS_MIN`` (see above), quoted in the note.
+#: A coating more than ``STIFF_CONTRAST`` times stiffer than its substrate (Ec*/Es*; outside
+#: the paper's range) needs ``STIFF_FACTOR`` times as many cells. Measured at n = 128, bonded
+#: and frictionless, H = 0.01-0.05: with one cell max |error in a| 0.063 % at E = 6 but
+#: 0.19 % at E = 10 (H = 0.02, 1.02 cells); with 1.5 cells 0.046 % at E = 10.
+STIFF_CONTRAST = 4.0
+STIFF_FACTOR = 1.5
+#: The largest measured |error in a| below the cells needed, quoted in the note: 0.17 % for
+#: E <= 4 (see ``LAYER_CELLS_MIN``); at E = 10 it was 0.59 % (0.51 cells).
 SUB_CELL_RADIUS_ERROR = 0.0017
+SUB_CELL_RADIUS_ERROR_STIFF = 0.0059
 #: Coarse levels with at least this many cells per side are preconditioned too (it saved up
 #: to a fifth of the pairs at n = 512 and cost 2-10 % at n = 128, where the coarse levels are
 #: 64 and 32).
@@ -169,7 +177,9 @@ class FFTMethod:
         ``meta["radius_estimator"]`` names the one used (``area`` where the fit failed).
     layer_cells
         Cells the thinnest coating must span for the sub-cell radius (default
-        ``LAYER_CELLS_MIN = 1``; ``None``: off). Where it spans fewer, the case is solved again
+        ``LAYER_CELLS_MIN = 1``; ``STIFF_FACTOR = 1.5`` times that for a coating more than
+        ``STIFF_CONTRAST = 4`` times stiffer than its substrate; ``None``: off). Where it
+        spans fewer, the case is solved again
         on the same domain with the ``n`` that gives it that many (at most ``LAYER_N_FACTOR n``,
         from the grid solution prolonged), and ``meta["layer_refinement"]`` records it:
         below a cell the coating's edge boundary layer lies inside one cell and no fit of the
@@ -341,9 +351,10 @@ class FFTMethod:
             return r
         g = Grid(**r.meta["grid"])
         cells = _layer_cells(case, g)
-        if cells >= self.layer_cells:
+        need = _cells_needed(case, self.layer_cells)
+        if cells >= need:
             return r
-        n_fine = _n_for_cells(self.n, cells, self.layer_cells)
+        n_fine = _n_for_cells(self.n, cells, need)
         if n_fine > min(N_MAX, LAYER_N_FACTOR * self.n):
             return r  # left to the note
         dx = g.half_widths[0] / (n_fine // 2 - 0.5)
@@ -370,13 +381,17 @@ class FFTMethod:
         grid = Grid(**r.meta["grid"])
         cells = _layer_cells(case, grid)
         r.meta["layer_cells"] = cells if math.isfinite(cells) else None
-        if cells >= LAYER_CELLS_MIN or r.meta["radius_estimator"] != "gap-fit":
+        need = _cells_needed(case, LAYER_CELLS_MIN)
+        if cells >= need or r.meta["radius_estimator"] != "gap-fit":
             return
-        n_need = _n_for_cells(grid.nx, cells, LAYER_CELLS_MIN)
+        n_need = _n_for_cells(grid.nx, cells, need)
+        stiff = need > LAYER_CELLS_MIN
+        bound = (f"{SUB_CELL_RADIUS_ERROR_STIFF:.2%} (measured at Ec*/Es* = 10)" if stiff
+                 else f"{SUB_CELL_RADIUS_ERROR:.2%} (measured, E 1/4-4)")
         msg = (f"the coating is {cells:.2g} cells thick (h = {_thinnest(case):.4g} m, cell "
-               f"{max(grid.dx, grid.dy):.4g} m): its edge boundary layer is below the cell, and the sub-cell "
-               f"radius can be off by up to {SUB_CELL_RADIUS_ERROR:.2%} (measured, E 1/4-4 at "
-               f"n = 128); n >= {n_need} resolves it (delta and p0 are not affected)")
+               f"{max(grid.dx, grid.dy):.4g} m), fewer than the {need:g} its edge boundary layer "
+               f"needs: the sub-cell radius can be off by up to {bound} at n = 128; "
+               f"n >= {n_need} resolves it (delta and p0 are not affected)")
         warnings.warn(msg, UserWarning, stacklevel=3)
         r.meta["accuracy"] = msg
 
@@ -567,6 +582,18 @@ def _thinnest(case: ContactCase) -> float:
     """Thickness of the thinnest coating of the pair [m] (``inf`` without coatings)."""
     return min((b.coating.h for b in (case.body1, case.body2)
                 if b.coating is not None and b.coating.h > 0), default=math.inf)
+
+
+def _cells_needed(case: ContactCase, base: float) -> float:
+    """Cells the thinnest coating needs: ``base``, times ``STIFF_FACTOR`` for a coating more
+    than ``STIFF_CONTRAST`` times stiffer than its (elastic) substrate."""
+    coated = [b for b in (case.body1, case.body2) if b.coating is not None and b.coating.h > 0]
+    if not coated:
+        return base
+    b = min(coated, key=lambda b: b.coating.h)
+    stiff = (not b.material.is_rigid
+             and b.coating.material.E_star > STIFF_CONTRAST * b.material.E_star)
+    return base * STIFF_FACTOR if stiff else base
 
 
 def _layer_cells(case: ContactCase, grid: Grid) -> float:
