@@ -207,7 +207,7 @@ def taylor_coefficients(fun, n: int = 3, radius: float = 0.2, m: int = 64,
         vals = np.asarray(fun(r * np.exp(1j * th)), dtype=complex)
         c = (np.exp(-1j * np.outer(k, th)) @ vals) / m / r**k
         zc = 0.25 * r * np.exp(1j * phi)
-        series = np.exp(np.outer(np.log(zc), k)) @ c
+        series = (zc[:, None] ** k) @ c
         miss = np.max(np.abs(np.asarray(fun(zc)) - series))
         if miss <= rtol * np.max(np.abs(vals)):
             return c[:n].real

@@ -350,11 +350,9 @@ class FFTMethod:
         if self.layer_cells is None or r.meta["radius_estimator"] != "gap-fit":
             return r
         g = Grid(**r.meta["grid"])
-        cells = _layer_cells(case, g)
-        need = _cells_needed(case, self.layer_cells)
+        cells, need, n_fine = _layer_resolution(case, g, self.layer_cells)
         if cells >= need:
             return r
-        n_fine = _n_for_cells(self.n, cells, need)
         if n_fine > min(N_MAX, LAYER_N_FACTOR * self.n):
             return r  # left to the note
         dx = g.half_widths[0] / (n_fine // 2 - 0.5)
@@ -375,20 +373,18 @@ class FFTMethod:
 
     def _resolution_note(self, case: ContactCase, r: ContactResult) -> None:
         """Record ``meta["layer_cells"]`` (thinnest coating over the cell size) and, where the
-        coating is thinner than ``LAYER_CELLS_MIN`` cells and the radius is the sub-cell fit,
-        warn and say in ``meta["accuracy"]`` how far ``a`` can be off (see
+        coating spans fewer cells than it needs (:func:`_layer_resolution`) and the radius is
+        the sub-cell fit, warn and say in ``meta["accuracy"]`` how far ``a`` can be off (see
         :data:`LAYER_CELLS_MIN`)."""
         grid = Grid(**r.meta["grid"])
-        cells = _layer_cells(case, grid)
+        cells, need, n_need = _layer_resolution(case, grid, LAYER_CELLS_MIN)
         r.meta["layer_cells"] = cells if math.isfinite(cells) else None
-        need = _cells_needed(case, LAYER_CELLS_MIN)
         if cells >= need or r.meta["radius_estimator"] != "gap-fit":
             return
-        n_need = _n_for_cells(grid.nx, cells, need)
         stiff = need > LAYER_CELLS_MIN
         bound = (f"{SUB_CELL_RADIUS_ERROR_STIFF:.2%} (measured at Ec*/Es* = 10)" if stiff
                  else f"{SUB_CELL_RADIUS_ERROR:.2%} (measured, E 1/4-4)")
-        msg = (f"the coating is {cells:.2g} cells thick (h = {_thinnest(case):.4g} m, cell "
+        msg = (f"the coating is {cells:.2g} cells thick (h = {cells * max(grid.dx, grid.dy):.4g} m, cell "
                f"{max(grid.dx, grid.dy):.4g} m), fewer than the {need:g} its edge boundary layer "
                f"needs: the sub-cell radius can be off by up to {bound} at n = 128; "
                f"n >= {n_need} resolves it (delta and p0 are not affected)")
@@ -578,33 +574,21 @@ class FFTMethod:
         return results
 
 
-def _thinnest(case: ContactCase) -> float:
-    """Thickness of the thinnest coating of the pair [m] (``inf`` without coatings)."""
-    return min((b.coating.h for b in (case.body1, case.body2)
-                if b.coating is not None and b.coating.h > 0), default=math.inf)
-
-
-def _cells_needed(case: ContactCase, base: float) -> float:
-    """Cells the thinnest coating needs: ``base``, times ``STIFF_FACTOR`` for a coating more
-    than ``STIFF_CONTRAST`` times stiffer than its (elastic) substrate."""
+def _layer_resolution(case: ContactCase, grid: Grid, base: float) -> tuple[float, float, int]:
+    """``(cells, need, n)`` for the thinnest coating of the pair: the cells it spans on
+    ``grid`` (the larger cell side; ``inf`` without coatings), the cells it needs (``base``,
+    times ``STIFF_FACTOR`` for a coating more than ``STIFF_CONTRAST`` times stiffer than its
+    elastic substrate) and the even ``n`` that gives it those on the same domain (the cell
+    shrinks like ``1 / (n/2 - 1/2)``)."""
     coated = [b for b in (case.body1, case.body2) if b.coating is not None and b.coating.h > 0]
     if not coated:
-        return base
+        return math.inf, base, grid.nx
     b = min(coated, key=lambda b: b.coating.h)
+    cells = b.coating.h / max(grid.dx, grid.dy)
     stiff = (not b.material.is_rigid
              and b.coating.material.E_star > STIFF_CONTRAST * b.material.E_star)
-    return base * STIFF_FACTOR if stiff else base
-
-
-def _layer_cells(case: ContactCase, grid: Grid) -> float:
-    """Cells across the thinnest coating (the larger cell side; ``inf`` without coatings)."""
-    return _thinnest(case) / max(grid.dx, grid.dy)
-
-
-def _n_for_cells(n: int, cells: float, target: float) -> int:
-    """Even ``n`` on the same domain (cell ~ 1 / (n/2 - 1/2)) with ``target`` cells across a
-    coating that spans ``cells`` at ``n``."""
-    return 2 * math.ceil((n / 2 - 0.5) * target / cells + 0.5)
+    need = base * STIFF_FACTOR if stiff else base
+    return cells, need, 2 * math.ceil((grid.nx / 2 - 0.5) * need / cells + 0.5)
 
 
 def prolong_pressure(pc: np.ndarray, coarse: Grid, fine: Grid) -> np.ndarray:
