@@ -338,3 +338,14 @@ def test_a_much_stiffer_coating_needs_one_and_a_half_cells():
     errs = [x.a / 3.128466981798888e-05 - 1 for x in (raw, r)]
     assert r.meta["layer_refinement"]["n"] == 190 and r.meta["layer_cells"] >= 1.5, r.meta["layer_refinement"]
     assert abs(errs[0]) > 1.5e-3 and abs(errs[1]) < 1e-3, f"a errors raw / refined {errs}"
+
+
+def test_refinement_never_goes_beyond_its_absolute_cap(monkeypatch):
+    """The automatic refinement stays within ``LAYER_N_MAX`` whatever n was requested (memory
+    the user did not ask for); beyond, the result is flagged. Checked with the cap lowered."""
+    import coathertz.fft.method as fm
+
+    monkeypatch.setattr(fm, "LAYER_N_MAX", 200)  # E = 4, H = 0.01 at n = 128 needs 252
+    with pytest.warns(UserWarning, match="cells thick"):
+        _, meta = _thin_error(("bonded", 4.0, 0.01), 128)
+    assert "layer_refinement" not in meta and meta["grid"]["nx"] == 128 and "accuracy" in meta

@@ -83,6 +83,10 @@ LAYER_CELLS_MIN = 1.0
 #: The refinement for a thin coating (``FFTMethod.layer_cells``) goes up to this many times
 #: the requested ``n`` (beyond, the result says how far ``a`` can be off).
 LAYER_N_FACTOR = 4
+#: ... and never beyond this n, whatever was requested: an automatic refinement should not
+#: take the memory a user did not ask for (n = 2048 peaked at 1.5 GB resident, homogeneous
+#: case, this machine; n = 4096 would take about four times that).
+LAYER_N_MAX = 1024
 #: A coating more than ``STIFF_CONTRAST`` times stiffer than its substrate (Ec*/Es*; outside
 #: the paper's range) needs ``STIFF_FACTOR`` times as many cells. Measured at n = 128, bonded
 #: and frictionless, H = 0.01-0.05: with one cell max |error in a| 0.063 % at E = 6 but
@@ -180,7 +184,8 @@ class FFTMethod:
         ``LAYER_CELLS_MIN = 1``; ``STIFF_FACTOR = 1.5`` times that for a coating more than
         ``STIFF_CONTRAST = 4`` times stiffer than its substrate; ``None``: off). Where it
         spans fewer, the case is solved again
-        on the same domain with the ``n`` that gives it that many (at most ``LAYER_N_FACTOR n``,
+        on the same domain with the ``n`` that gives it that many (at most ``LAYER_N_FACTOR n``
+        and ``LAYER_N_MAX``,
         from the grid solution prolonged), and ``meta["layer_refinement"]`` records it:
         below a cell the coating's edge boundary layer lies inside one cell and no fit of the
         grid solution recovers ``a`` to 0.1 % (see :data:`LAYER_CELLS_MIN`). Where even that
@@ -353,7 +358,7 @@ class FFTMethod:
         cells, need, n_fine = _layer_resolution(case, g, self.layer_cells)
         if cells >= need:
             return r
-        if n_fine > min(N_MAX, LAYER_N_FACTOR * self.n):
+        if n_fine > min(N_MAX, LAYER_N_MAX, LAYER_N_FACTOR * self.n):
             return r  # left to the note
         dx = g.half_widths[0] / (n_fine // 2 - 0.5)
         fine = Grid(n_fine, n_fine, dx, dx * g.dy / g.dx)
