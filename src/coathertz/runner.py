@@ -34,7 +34,7 @@ import threading
 import time
 import traceback
 import warnings
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from dataclasses import dataclass, field
 from typing import Any
@@ -107,18 +107,104 @@ def solve_chunk(method: Method, cases: Sequence[ContactCase]) -> list[tuple[dict
     return out
 
 
-def _progress(total: int, enabled: bool, desc: str):
-    try:
-        from tqdm.auto import tqdm
-    except ImportError:  # pragma: no cover
-        enabled = False
-    if not enabled:
-        class _Null:
-            def update(self, n: int = 1) -> None: ...
-            def close(self) -> None: ...
-            def set_postfix_str(self, s: str) -> None: ...
-        return _Null()
-    return tqdm(total=total, desc=desc, unit="case", leave=False, mininterval=0.5)
+#: Seconds between two progress lines when stderr is not a terminal (a log file, CI).
+PROGRESS_INTERVAL = 5.0
+#: Seconds between two redraws of the progress line on a terminal.
+PROGRESS_REDRAW = 0.5
+#: Per-case cost [s] assumed for a method's cost class until one of its cases has finished
+#: (then its measured mean replaces it): only the ratios between the classes matter.
+COST_PRIOR = {"cheap": 1e-3, "moderate": 0.1, "expensive": 5.0}
+
+
+def _duration(seconds: float) -> str:
+    s = round(seconds)
+    if s < 60:
+        return f"{s} s"
+    if s < 3600:
+        return f"{s // 60} min {s % 60:02d} s"
+    return f"{s // 3600} h {s % 3600 // 60:02d} min"
+
+
+class Progress:
+    """Progress of one :func:`run_tasks` call on stderr: cases done, rate, elapsed time and an
+    ETA weighted by each method's measured cost per case.
+
+    The ETA is ``elapsed * remaining cost / cost done``, the cost of a case being its method's
+    mean measured time per case (:data:`COST_PRIOR` by cost class for a method none of whose
+    cases has finished yet). The count-based ETA of a progress bar assumes every case costs the
+    same; with FE cases 1000 times the cost of closed-form ones it is off by the mix.
+
+    On a terminal the line is redrawn in place (``\r``) and erased at the end; otherwise (a log
+    file) one line is written every :data:`PROGRESS_INTERVAL` seconds.
+    """
+
+    def __init__(self, pending: Mapping[str, int], desc: str, *, enabled: bool = True,
+                 stream: Any = None, tty: bool | None = None,
+                 interval: float | None = None, clock: Callable[[], float] = time.monotonic) -> None:
+        from coathertz.methods import method_info
+
+        self.total = dict(pending)
+        self.done = dict.fromkeys(pending, 0)
+        self.spent = dict.fromkeys(pending, 0.0)
+        self.prior = {m: COST_PRIOR.get(method_info(m).cost, COST_PRIOR["expensive"]) for m in pending}
+        self.desc, self.enabled = desc, enabled
+        self.stream = sys.stderr if stream is None else stream
+        self.tty = bool(getattr(self.stream, "isatty", lambda: False)()) if tty is None else tty
+        self.interval = (PROGRESS_REDRAW if self.tty else PROGRESS_INTERVAL) if interval is None else interval
+        self.clock = clock
+        self.t0 = self.last = clock()
+        self._width = 0
+
+    def cost(self, method: str) -> float:
+        """Mean measured seconds per case of ``method`` (its class prior before the first)."""
+        n = self.done.get(method, 0)
+        return self.spent[method] / n if n else self.prior.get(method, COST_PRIOR["expensive"])
+
+    def eta(self) -> float | None:
+        """Seconds left (None before the first case has finished)."""
+        elapsed = self.clock() - self.t0
+        done_cost = sum(self.done[m] * self.cost(m) for m in self.total)
+        if done_cost <= 0 or elapsed <= 0:
+            return None
+        left_cost = sum((self.total[m] - self.done[m]) * self.cost(m) for m in self.total)
+        return elapsed * left_cost / done_cost
+
+    def line(self) -> str:
+        n, total = sum(self.done.values()), sum(self.total.values())
+        elapsed = self.clock() - self.t0
+        rate = n / elapsed if elapsed > 0 else 0.0
+        eta = self.eta()
+        left = "" if eta is None or n == total else f", about {_duration(eta)} left"
+        return (f"{self.desc}: {n}/{total} cases done, {rate:.3g} cases/s, elapsed "
+                f"{_duration(elapsed)}{left}")
+
+    def update(self, method: str, n: int = 1, seconds: float = 0.0) -> None:
+        """``n`` cases of ``method`` finished, taking ``seconds`` together."""
+        if method not in self.total:
+            self.total[method], self.done[method], self.spent[method] = n, 0, 0.0
+            self.prior[method] = COST_PRIOR["expensive"]
+        self.done[method] += n
+        self.spent[method] += seconds
+        now = self.clock()
+        if self.enabled and now - self.last >= self.interval:
+            self.last = now
+            self._write(self.line())
+
+    def _write(self, text: str) -> None:
+        try:
+            if self.tty:
+                self.stream.write("\r" + text.ljust(self._width))
+                self._width = len(text)
+            else:
+                self.stream.write(text + "\n")
+            self.stream.flush()
+        except (OSError, ValueError):  # a closed stderr must not stop the run
+            self.enabled = False
+
+    def close(self) -> None:
+        if self.enabled and self.tty and self._width:
+            self._write(" " * self._width)
+            self.stream.write("\r")
 
 
 def _chunks(tasks: list[Task], chunk_size: int | None) -> list[tuple[Method, list[ContactCase]]]:
@@ -145,7 +231,11 @@ def _dask_client(scheduler: Any):
             "--scheduler needs dask.distributed: pip install 'coathertz[dask]'"
         ) from exc
     if isinstance(scheduler, str):
-        return Client(scheduler), True
+        try:
+            return Client(scheduler), True
+        except (OSError, ValueError, TypeError) as exc:
+            raise CoatHertzError(f"--scheduler {scheduler!r}: cannot connect to a dask scheduler "
+                                 f"there ({exc})") from None
     return scheduler, False
 
 
@@ -209,7 +299,10 @@ def run_tasks(
         outcome.wall_time = time.perf_counter() - t_start
         return outcome
 
-    bar = _progress(len(pending), progress, desc)
+    counts: dict[str, int] = {}
+    for t in pending:
+        counts[t.method.name] = counts.get(t.method.name, 0) + 1
+    bar = Progress(counts, desc, enabled=progress)
     stored = 0
     outside: list[str] = []
 
@@ -227,7 +320,7 @@ def run_tasks(
             if scalars is not None and (scalars.get("meta") or {}).get("validity"):
                 outside.append(f"{method.name}: {c.label or c.describe()}")
             stored += 1
-            bar.update(1)
+            bar.update(method.name, 1, dt / len(cases))
             if stop_after is not None and stored >= stop_after:
                 raise RunInterrupted(f"stopped after {stored} results (stop_after)")
         outcome.method_time[method.name] = outcome.method_time.get(method.name, 0.0) + dt
@@ -303,6 +396,9 @@ def worker_init(parent: int) -> None:
         except OSError:
             pass
     HELD_LOCK_FDS.clear()
+    # Ctrl-C reaches the whole process group: the parent stops the run and terminates the
+    # workers; a worker handling SIGINT itself would print its traceback ("Process ForkProcess-N:")
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
     _set_parent_death_signal()
     if os.getppid() != parent:  # the parent died before the signal was armed
         os._exit(1)

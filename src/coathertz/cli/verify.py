@@ -11,6 +11,9 @@ from pathlib import Path
 NAME = "verify"
 HELP = "run the paper's studies (closed form, FFT, FE) and write the verification report"
 
+#: dask.distributed protocols a scheduler of another process can be reached by.
+SCHEDULER_PROTOCOLS = ("tcp", "tls", "ws", "wss", "ucx")
+
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     res = parser.add_mutually_exclusive_group()
@@ -36,7 +39,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--recover-store", action="store_true",
                         help="if the store is damaged, move it aside to STORE.damaged-<time> (kept) "
                              "and recompute")
-    parser.add_argument("--no-progress", action="store_true", help="no progress bar")
+    parser.add_argument("--no-progress", action="store_true",
+                        help="no progress on stderr (default: a line redrawn on a terminal, else a line "
+                             "every few seconds: cases done, rate, elapsed, time left by measured cost)")
     parser.add_argument("--list", action="store_true", help="list the studies and methods and exit")
 
 
@@ -44,8 +49,39 @@ def _sigterm(signum, frame):  # pragma: no cover - exercised through a subproces
     raise KeyboardInterrupt
 
 
+def study_line(name: str, cases: int, solved: int, reused: int, seconds: float) -> str:
+    """The console line of one finished study (README quotes it): its cases, and its results
+    (one per case and method) solved in this run or reused from the store."""
+    results = solved + reused
+    return (f"{name:9s} {cases:5d} case{'s' if cases != 1 else ''}, {results} result"
+            f"{'s' if results != 1 else ''} ({solved} solved now, {reused} reused from the store) "
+            f"{seconds:7.1f} s")
+
+
+def check_scheduler(address: str) -> str:
+    """Fail now, with one line, on a ``--scheduler`` that is not ``[PROTOCOL://]HOST:PORT``."""
+    from coathertz.errors import CoatHertzError
+
+    try:
+        from distributed.comm import parse_address
+        from distributed.comm.addressing import parse_host_port
+    except ImportError:
+        raise CoatHertzError("--scheduler needs dask.distributed: pip install 'coathertz[dask]'") from None
+    try:
+        scheme, loc = parse_address(address)
+        if scheme not in SCHEDULER_PROTOCOLS:
+            raise ValueError(f"protocol {scheme!r} is not one of {', '.join(SCHEDULER_PROTOCOLS)}")
+        host, _ = parse_host_port(loc)
+        if not host or any(c.isspace() for c in host):
+            raise ValueError(f"no host name in {loc!r}")
+    except (ValueError, TypeError) as exc:
+        raise CoatHertzError(f"--scheduler {address!r} is not a scheduler address ({exc}); give "
+                             "PROTOCOL://HOST:PORT, e.g. tcp://127.0.0.1:8786") from None
+    return address
+
+
 def run(args: argparse.Namespace) -> int:
-    from coathertz.cli._common import output_dir
+    from coathertz.cli._common import output_dir, writing
     from coathertz.errors import CoatHertzError
     from coathertz.methods import method_info, method_names
     from coathertz.report import write_report
@@ -66,16 +102,30 @@ def run(args: argparse.Namespace) -> int:
         return 0
     if args.workers < 1:
         raise CoatHertzError(f"--workers must be >= 1, got {args.workers}")
+    if args.scheduler is not None:
+        check_scheduler(args.scheduler)
     mods = [get_study(n) for n in args.study] if args.study else list(studies().values())
     baseline = load_baseline(args.baseline) if args.baseline else None
     methods, notes = build_methods(args.resolution, args.method)
-    out = output_dir(args.out or Path("reports") / args.resolution, "--out")
+    out_path = args.out or Path("reports") / args.resolution
+
+    def note(m: str) -> None:
+        print(f"coathertz verify: note: {m}", file=sys.stderr)
+
+    if args.store:  # a store that is busy or damaged fails before the --out folder is created
+        store = open_run_store(args.store, recover=args.recover_store, note=note)
+        try:
+            out = output_dir(out_path, "--out")
+        except BaseException:
+            store.close()
+            raise
+    else:
+        out = output_dir(out_path, "--out")
+        store = open_run_store(out / "store.sqlite", recover=args.recover_store, note=note)
     for n in notes:
-        print(f"coathertz verify: note: {n}", file=sys.stderr)
-    store = open_run_store(args.store or out / "store.sqlite", recover=args.recover_store,
-                           note=lambda m: print(f"coathertz verify: note: {m}", file=sys.stderr))
+        note(n)
     opts = {"workers": args.workers, "scheduler": args.scheduler,
-            "progress": not args.no_progress and sys.stderr.isatty(), "retry_errors": args.retry_errors}
+            "progress": not args.no_progress, "retry_errors": args.retry_errors}
     old = signal.signal(signal.SIGTERM, _sigterm)
     t0 = time.perf_counter()
     results = []
@@ -84,9 +134,8 @@ def run(args: argparse.Namespace) -> int:
             r = run_study(mod, args.resolution, methods, store, opts)
             results.append(r)
             n = len({x['case'] for x in r.rows})
-            print(f"{r.name:9s} {n:5d} case{'s' if n != 1 else ' '} ({r.computed} solved now, "
-                  f"{r.reused} reused from the store) {r.wall_time:7.1f} s  claims: "
-                  f"{verdict_counts([c.verdict for c in r.claims])}", flush=True)
+            print(study_line(r.name, n, r.computed, r.reused, r.wall_time) + "  claims: "
+                  + verdict_counts([c.verdict for c in r.claims]), flush=True)
     except KeyboardInterrupt:
         print(f"coathertz verify: interrupted; {store.count()} results are in {store.path}; "
               "run the same command again to resume", file=sys.stderr)
@@ -99,9 +148,13 @@ def run(args: argparse.Namespace) -> int:
                                      "workers": args.scheduler or args.workers,
                                      "total_run_time": f"{total:.1f} s",
                                      "store": str(store.path)})
-    store.export_csv(out / "store.csv")
-    store.export_json(out / "store.json")
-    store.close()
+    try:
+        with writing(out / "store.csv", "--out"):
+            store.export_csv(out / "store.csv")
+        with writing(out / "store.json", "--out"):
+            store.export_json(out / "store.json")
+    finally:
+        store.close()
     files = write_report(results, out, prov, {m.NAME: m for m in mods}, baseline, notes)
     print(f"all studies: {verdict_counts([c.verdict for r in results for c in r.claims])}")
     print(f"report: {files.html} ({total:.1f} s)")

@@ -24,8 +24,9 @@ _PHRASES = (("holds", "holds", "hold"), ("does not hold", "does not hold", "do n
              "are inconclusive (within numerical error)"),
             ("observed", "observation", "observations"),
             ("n/a", "could not be computed", "could not be computed"))
-COUNTS_NOTE = ("computed: solved in this run; reused: taken from the result store, where an earlier run "
-               "stored the same case with the same method, settings and code version")
+COUNTS_NOTE = ("results: one per case and method; solved now: in this run; reused: taken from the result "
+               "store, where an earlier run stored the same case with the same method, settings and "
+               "code version")
 
 
 def _num(v: float, unit: str) -> str:
@@ -99,9 +100,10 @@ def markdown(results: Sequence[Any], provenance: dict, figures: dict[str, list[P
     lines += [f"- {k}: {v}" for k, v in provenance.items() if k != "notes"]
     lines += [f"- note: {n}" for n in notes]
     lines += ["", "## Run time per study", "", COUNTS_NOTE + ".", "",
-              "| study | cases (computed / reused) | methods | wall time |", "|---|---|---|---|"]
+              "| study | cases | results solved now / reused | methods | wall time |",
+              "|---|---|---|---|---|"]
     for r in results:
-        lines.append(f"| {r.name} | {len({x['case'] for x in r.rows})} ({r.computed} / {r.reused}) | "
+        lines.append(f"| {r.name} | {len({x['case'] for x in r.rows})} | {r.computed} / {r.reused} | "
                      f"{', '.join(r.methods)} | {r.wall_time:.1f} s |")
     for r in results:
         lines += ["", f"## {r.title} ({cases_phrase(r)})", "", f"*Paper:* {r.claim}", ""]
@@ -186,7 +188,7 @@ def html_page(results: Sequence[Any], provenance: dict, figures: dict[str, list[
     out += [f"<tr><th>note</th><td>{e(n)}</td></tr>" for n in notes]
     out.append(f"</table><h2>Run time per study</h2><p class='small'>{e(COUNTS_NOTE)}.</p>"
                "<table><tr><th>study</th><th>cases</th>"
-               "<th>computed / reused</th><th>methods</th><th>wall time</th>"
+               "<th>results solved now / reused</th><th>methods</th><th>wall time</th>"
                "<th>solver time by method</th></tr>")
     for r in results:
         mt = ", ".join(f"{k}: {v:.1f} s" for k, v in sorted(r.method_time.items()))
