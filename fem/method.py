@@ -43,6 +43,7 @@ from coathertz.fem.post import AXIS_TOL, contact_radius, peak_pressure, stress_r
 from coathertz.fem.solvers import AMGSolver, DirectSolver
 from coathertz.hertz import hertz_circular
 from coathertz.materials import Body, Material
+from coathertz.methods import require_case
 from coathertz.results import ContactResult
 
 CONTACTS = {"active-set": lambda beta: ActiveSet(), "penalty": lambda beta: Penalty(beta=beta)}
@@ -310,7 +311,7 @@ class FEMMethod:
         return a_s + (a_c - a_s) * wgt
 
     def solve(self, case: ContactCase) -> ContactResult:
-        return self.solve_full(case)[0]
+        return self.solve_full(require_case(case, self.name))[0]
 
     def solve_full(self, case: ContactCase) -> tuple[ContactResult, FEModel, LoadPath]:
         """Like :meth:`solve`, also returning the model and the load path (for VTU output)."""

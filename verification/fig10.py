@@ -13,7 +13,7 @@ the Hertz ellipse (dy/dx = r_b/r_a ~ 0.31).
 Paper's claim: eqs (5), (17), (18), (21) predict the semi-axes, approach and maximum pressure
 *within 4 %*. Readings of gaps (each claim names its reading): the printed claims use eq (21)
 as printed, with alpha_b from its b row built on the alpha_a curves (the paper gives no alpha_b
-curves); the alternative alpha_b = alpha_a is reported too. Also shown: NOTES.md's other reading
+curves); the alternative alpha_b = alpha_a is reported too. Also shown: docs/paper-notes.md's other reading
 of eq (21)'s C2 for alpha_delta (0.685, as in eq 19b, instead of the printed 0.0885; it matters
 for 1/3 < E < 1). Axisymmetric methods (FE, exact axisym) do not apply: the FFT is the reference.
 
@@ -38,7 +38,7 @@ QUANTITIES = ("r_a", "r_b", "delta", "p")
 RX, RY, W = 17.4e-3, 3.0e-3, 400.0
 RATIOS = (0.25, 0.8, 1.25, 4.0)
 INDENTERS = {"rigid": "rigid indenter", "elastic": "elastic indenter (substrate's 200 GPa, 0.3)"}
-#: NOTES.md: eq (21)'s C2 for alpha_delta printed 0.0885; eq (19b) has 0.685 in the same place.
+#: docs/paper-notes.md: eq (21)'s C2 for alpha_delta printed 0.0885; eq (19b) has 0.685 in the same place.
 ALT_C2_DELTA = 0.685
 
 

@@ -10,7 +10,7 @@ predicted within 1.5 %*; the error is :math:`(\text{predicted} - \text{numerical
 
 Also checked: the limits (H -> 0 gives the substrate's Hertz values, bars -> 1; H large gives
 the coating's, :math:`\bar a \to E^{-1/3}, \bar p \to E^{2/3}, \bar\delta \to E^{-2/3}`), and the
-effect of the assumption NOTES.md makes for the parts missing from eq (19) (rule ``paper``:
+effect of the assumption docs/paper-notes.md makes for the parts missing from eq (19) (rule ``paper``:
 alpha(3) for E >= 1 and alpha(1/3) for E < 1) against the alternative ``eq21-fill``.
 
 Resolutions: ``full`` is the paper's 25 x 101 grid (cheap and moderate methods, e.g. exact
@@ -35,7 +35,8 @@ TITLE = "Figure 3: a, p, delta against H, elastic substrate"
 CLAIM = "Eqs (1), (17)-(19) predict every fig-3 case (25 E x 101 H = 2525) within 1.5 % (Section 3)."
 BOUND = 1.5
 #: The reading of eq (19)'s missing parts every claim below uses unless it names another.
-RULE_TEXT = "alpha rule 'paper' (eq 19; alpha_a and alpha_delta(E > 1) at alpha(1/3), alpha(3), NOTES.md)"
+RULE_TEXT = ("alpha rule 'paper' (eq 19; alpha_a and alpha_delta(E > 1) at alpha(1/3), alpha(3), "
+             "docs/paper-notes.md)")
 
 
 def grid(resolution: str) -> tuple[list[float], np.ndarray, set[tuple[float, float]]]:

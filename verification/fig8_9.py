@@ -30,7 +30,7 @@ TITLE = "Figures 8 and 9: rigid substrate, coating moduli from 50 to 800 GPa; co
 CLAIM = ("Bars are independent of Ec; the rigid-substrate alpha curves predict every case within 1 % "
          "(Section 4).")
 BOUND = 1.0
-#: NOTES.md: Appendix A's rigid alpha_delta = 1.039 H^-0.256 may be a scan error for 1.089.
+#: docs/paper-notes.md: Appendix A's rigid alpha_delta = 1.039 H^-0.256 may be a scan error for 1.089.
 ALT_DELTA_COEFF = 1.089
 
 
@@ -96,7 +96,8 @@ def analyse(result: C.StudyResult) -> None:
         "fig8-max-err", "max |err| of eqs (1), (17), (18) with the rigid-substrate alpha curves as printed "
         "(alpha_delta = 1.039 H^-0.256)", result, BOUND))
     result.claims.append(C.bound_claim(
-        "fig8-max-err-alt-delta", f"other reading (NOTES.md): rigid alpha_delta = {ALT_DELTA_COEFF} H^-0.256 "
+        "fig8-max-err-alt-delta",
+        f"other reading (docs/paper-notes.md): rigid alpha_delta = {ALT_DELTA_COEFF} H^-0.256 "
         "(a 3/8 misread?): max |err|", result, BOUND, errors=alt_errors(result)))
     # fig 9: alpha inverted from each numerical result, with error bars from the bars' uncertainty
     inv = fig4.inverted(result, rigid=True)

@@ -1,7 +1,7 @@
 r"""The Poisson check (Section 3): coating Poisson's ratio away from 0.3.
 
 Configuration: rigid sphere, elastic substrate with :math:`\nu_s = 0.3`; coating
-:math:`\nu_c = 0.15 + (i-1)\,0.03`, i = 1..6 (the copy's "0.3" step is a typo, NOTES.md),
+:math:`\nu_c = 0.15 + (i-1)\,0.03`, i = 1..6 (the copy's "0.3" step is a typo, docs/paper-notes.md),
 modulus ratios E in {4, 1.25, 0.8, 0.25}, 101 values of H: 2424 cases. The alpha curves were
 fitted at :math:`\nu_c = \nu_s = 0.3`; eq (17) carries :math:`\nu_c` through lambda and kappa.
 

@@ -1,4 +1,4 @@
-r"""Issue 10: the refitted extended-Hertz rule against the exact method, next to the paper's rule.
+r"""The refitted extended-Hertz rule against the exact method, next to the paper's rule.
 
 Configurations (rigid indenter, :mod:`coathertz.refit.sweep` cases):
 
@@ -12,7 +12,7 @@ The error of each rule is ``(predicted - exact)/exact`` in percent, against the 
 numerical method that solved the case (the exact axisymmetric method where registered, else
 the FFT, whose contact radius carries ~0.3 % discretisation noise at n = 128).
 
-Claims (issue 10): refit max |error| <= 0.3 % on delta, a, p0 (circular) and <= 1 % on
+Claims: refit max |error| <= 0.3 % on delta, a, p0 (circular) and <= 1 % on
 r_a, r_b, delta, p0 (elliptical). The paper's rule is reported on the same points.
 Resolutions: ``tiny`` a handful of cases, ``quick`` ~60 (CI), ``full`` ~700.
 """
@@ -30,7 +30,7 @@ from coathertz.refit import predict as refit_predict
 from coathertz.refit.sweep import Point, make_case
 
 NAME = "refit"
-TITLE = "Issue 10: refitted alpha vs the paper's rule, against the exact method"
+TITLE = "Refitted alpha vs the paper's rule, against the exact method"
 CLAIM = ("The refitted rule predicts delta, a, p0 within 0.3 % (circular) and r_a, r_b, delta, p0 "
          "within 1 % (elliptical) over E in [1/10, 10], H in [0.001, 10].")
 QUANTITIES = ("a", "p", "delta")

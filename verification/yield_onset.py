@@ -1,6 +1,6 @@
 r"""Yield onset of coated half-spaces under a rigid sphere: load of first yield and where it occurs.
 
-Not a figure of the paper: an extension (issue 11). For each coating (modulus ratio
+Not a figure of the paper: an extension. For each coating (modulus ratio
 :math:`E = E_c^*/E_s^*`, thickness :math:`H = h/a_{ys}`, yield-stress ratio :math:`Y_c/Y_s`) the
 elastic FE solution gives the load :math:`W_y` at which the von Mises stress first reaches the
 yield stress of the coating or of the substrate, and where

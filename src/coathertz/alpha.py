@@ -7,7 +7,7 @@ Appendix A gives representative curves alpha_q(H) for q in {a, delta, p}:
 
 Eq (19) maps the E = 1/3 and E = 3 curves to other E for alpha_p (all E) and alpha_delta
 (E <= 1). The copy of the paper lacks alpha_a(E) everywhere and alpha_delta(E) for E > 1;
-NOTES.md prescribes the *representative* rule (alpha(E) = alpha(3) for E >= 1 and
+docs/paper-notes.md prescribes the *representative* rule (alpha(E) = alpha(3) for E >= 1 and
 alpha(1/3) for E < 1). Both the printed and the assumed parts are collected in an
 :class:`AlphaRule`, so a study can swap the assumption (e.g. :data:`EQ21_RULE`, which borrows
 eq (21)'s rows for the missing parts) and report its effect.
@@ -222,7 +222,7 @@ class AlphaRule:
         Label used in reports and the result store.
     missing
         How to fill the parts of eq (19) missing from the copy (alpha_a for all E,
-        alpha_delta for E > 1): ``"representative"`` (NOTES.md: alpha(3) for E >= 1,
+        alpha_delta for E > 1): ``"representative"`` (docs/paper-notes.md: alpha(3) for E >= 1,
         alpha(1/3) for E < 1) or ``"eq21"`` (the a and delta rows of eq 21).
     elliptical
         Use eq (21) for every quantity (Section 5) instead of eq (19).
@@ -279,6 +279,12 @@ def alpha_rigid(quantity: str, H) -> np.ndarray:
     return CURVES[(base, "rigid")](np.asarray(H, dtype=float))
 
 
+#: Largest explicit alpha accepted. The paper's alpha lie between about 0.3 and 10 (figs 4, 5, 9);
+#: at alpha H beyond ~350 eq (17) is the coating half-space to the last digit, and alpha H beyond
+#: ~1e154 overflows its (alpha H)^2 term.
+ALPHA_MAX = 1e3
+
+
 @dataclass(frozen=True)
 class Alphas:
     """Explicit alpha values (e.g. read from the paper's figures, as in Section 6).
@@ -294,8 +300,9 @@ class Alphas:
     def __post_init__(self) -> None:
         for name in ("a", "delta", "p", "b"):
             v = getattr(self, name)
-            if v is not None and not (np.isfinite(v) and v > 0):
-                raise CoatHertzError(f"alpha_{name} must satisfy 0 < alpha < inf, got {v!r}")
+            if v is not None and not (np.isfinite(v) and 0 < v <= ALPHA_MAX):
+                raise CoatHertzError(f"alpha_{name} must satisfy 0 < alpha <= {ALPHA_MAX:g} (the paper's "
+                                     f"alpha are of order 1), got {v!r}")
 
     def get(self, quantity: str) -> float:
         if quantity == "b":
@@ -319,4 +326,7 @@ class Alphas:
         missing = {"a", "p", "delta"} - set(vals)
         if missing:
             raise CoatHertzError(f"--alpha: missing {sorted(missing)}; give a, p and delta")
-        return cls(**vals)
+        try:
+            return cls(**vals)
+        except CoatHertzError as exc:
+            raise CoatHertzError(f"--alpha: {exc}") from None

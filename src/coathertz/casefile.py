@@ -35,6 +35,8 @@ from coathertz.units import parse_quantity
 
 _BODY_KEYS = {"material", "coating", "R", "Rx", "Ry", "name"}
 _TOP_KEYS = {"label", "W", "theta", "body1", "body2"}
+#: Largest |theta| a case file accepts [rad]: one full turn either way (eq 3b is pi-periodic).
+THETA_MAX = 2.0 * math.pi
 
 
 def quantity(text: Any, dimension: str, name: str, *, minimum: str = ">0", allow_inf: bool = False) -> float:
@@ -155,6 +157,9 @@ def case_from_dict(data: dict) -> ContactCase:
             raise CoatHertzError(f"case file: missing '{key}'")
     W = quantity(data["W"], "force", "load W")
     theta = parse_quantity(data.get("theta", 0.0), "angle", name="theta")
+    if not abs(theta) <= THETA_MAX:  # also NaN; cos(2 theta) of eq (3b) loses every digit past ~1e16
+        raise CoatHertzError(f"theta (angle between the bodies' principal planes, eq 3b) must be in "
+                             f"[-360 deg, 360 deg], got {data['theta']!r}")
     return ContactCase(_body(data["body1"], "body1"), _body(data["body2"], "body2"), W, theta,
                        label=str(data.get("label", "")))
 
@@ -175,7 +180,7 @@ def load_case(path: str | Path) -> ContactCase:
     except OSError as exc:
         raise CoatHertzError(f"cannot read case file {text!r}: {exc.strerror or exc}") from exc
     try:
-        data = tomllib.loads(raw.decode("utf-8"))
+        data = tomllib.loads(raw.decode("utf-8-sig"))  # a byte-order mark (Windows editors) is dropped
     except UnicodeDecodeError as exc:
         raise CoatHertzError(f"case file {text!r} is not a text (UTF-8 TOML) file: "
                              f"byte {exc.start} cannot be decoded") from None

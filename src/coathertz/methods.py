@@ -27,6 +27,7 @@ metadata through :func:`method_info`, :func:`instances_for` and :func:`numerical
 
 from __future__ import annotations
 
+import inspect
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from functools import lru_cache
@@ -110,8 +111,37 @@ def method_class(name: str) -> type:
 
 
 def get_method(name: str, **settings: Any) -> Method:
-    """Instantiate the registered method ``name`` with ``settings``."""
-    return method_class(name)(**settings)
+    """Instantiate the registered method ``name`` with ``settings``.
+
+    A setting the method does not take, or a value its constructor refuses, raises
+    :class:`CoatHertzError` naming the method and the setting.
+    """
+    cls = method_class(name)
+    try:
+        params = inspect.signature(cls).parameters
+    except (TypeError, ValueError):  # pragma: no cover - a builtin or C factory
+        params = {}
+    if params and not any(p.kind is p.VAR_KEYWORD for p in params.values()):
+        known = [k for k, p in params.items() if p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)]
+        unknown = sorted(set(settings) - set(known))
+        if unknown:
+            raise CoatHertzError(f"get_method({name!r}): unknown setting{'s' if len(unknown) > 1 else ''} "
+                                 f"{', '.join(unknown)}; {name} takes {', '.join(known) or 'none'}")
+    try:
+        return cls(**settings)
+    except CoatHertzError as exc:
+        raise CoatHertzError(f"get_method({name!r}): {exc}") from None
+    except (TypeError, ValueError) as exc:
+        raise CoatHertzError(f"get_method({name!r}): bad settings {settings}: {exc}") from None
+
+
+def require_case(case: Any, method: str) -> ContactCase:
+    """``case`` if it is a :class:`ContactCase`; else :class:`CoatHertzError` naming the argument
+    (a method's ``solve`` calls this first)."""
+    if not isinstance(case, ContactCase):
+        raise CoatHertzError(f"{method}.solve(case): case must be a coathertz ContactCase (e.g. from "
+                             f"coathertz.casefile.load_case), got {type(case).__name__} {case!r:.60}")
+    return case
 
 
 def info_of(obj: Any, name: str | None = None) -> MethodInfo:

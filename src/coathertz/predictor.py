@@ -12,6 +12,7 @@ from coathertz.alpha import EQ21_RULE, PAPER_RULE, AlphaRule, Alphas
 from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError
 from coathertz.extended import predict
+from coathertz.methods import require_case
 from coathertz.results import ContactResult
 
 RULES = {r.name: r for r in (PAPER_RULE, EQ21_RULE)}
@@ -27,7 +28,7 @@ class ClosedFormMethod:
     ----------
     alpha_rule
         Name of the alpha rule for circular elastic-substrate cases (``paper``: eq 19 with the
-        NOTES.md assumptions; ``eq21-fill``: eq 21's rows for the parts missing from eq 19).
+        docs/paper-notes.md assumptions; ``eq21-fill``: eq 21's rows for the parts missing from eq 19).
         Elliptical cases always use eq (21), rigid substrates the rigid Appendix A curves.
         ``refit``: the refitted smooth alpha of :mod:`coathertz.refit` for every configuration
         (circular, rigid substrate, elliptical), with its validated error bound in
@@ -71,6 +72,7 @@ class ClosedFormMethod:
         return True
 
     def solve(self, case: ContactCase) -> ContactResult:
+        require_case(case, self.name)
         t0 = time.perf_counter()
         bound = None
         with warnings.catch_warnings():

@@ -351,6 +351,9 @@ def _check_integrity(db: sqlite3.Connection, path: str) -> None:
 
 def _store_error(path: str, exc: sqlite3.Error) -> StoreError:
     text = str(exc)
+    if isinstance(exc, sqlite3.OperationalError) and "full" in text:  # SQLITE_FULL
+        return StoreError(f"cannot write the result store {path}: the disk is full ({text}); the "
+                          "results stored so far are kept; free some space or give another --store")
     if isinstance(exc, sqlite3.OperationalError) and ("readonly" in text or "unable to open" in text
                                                        or "disk I/O" in text):
         return StoreError(f"cannot write the result store {path} ({text}); choose a writable "
@@ -456,6 +459,19 @@ def _pid_alive(pid: int) -> bool:  # pragma: no cover - fallback without fcntl
     return True
 
 
+def _empty_store(path: Path, note) -> None:
+    """A store file of 0 bytes (truncated, or a run killed as it created the file): SQLite would
+    take it silently for a new store. Say so: whatever it held is gone."""
+    msg = (f"the result store {path} is empty (0 bytes): any results it held are gone (truncated "
+           "file?); starting a new store there")
+    if note is not None:
+        note(msg)
+    else:
+        import warnings
+
+        warnings.warn(msg, stacklevel=3)
+
+
 def open_run_store(path: str | Path, *, recover: bool = False, version: str | None = None,
                    note=None) -> ResultStore:
     """Open the store of a run: exclusive (one run per store), integrity-checked.
@@ -477,6 +493,8 @@ def open_run_store(path: str | Path, *, recover: bool = False, version: str | No
     lock = _StoreLock(path)
     lock.acquire()
     try:
+        if path.is_file() and path.stat().st_size == 0:
+            _empty_store(path, note)
         try:
             store = ResultStore(path, version)
         except StoreError as exc:

@@ -24,6 +24,7 @@ UNITS: dict[str, dict[str, float]] = {
     },
     "length": {
         "m": 1.0,
+        "km": 1e3,
         "cm": 1e-2,
         "mm": 1e-3,
         "um": 1e-6,
@@ -69,6 +70,8 @@ def parse_quantity(text: str | float | int, dimension: str, *, name: str = "valu
         raise CoatHertzError(f"{name}: cannot read {text!r} as a number followed by a unit")
     number, unit = m.groups()
     value = float(number)
+    if math.isinf(value) and not number.lstrip("+-").startswith("inf"):
+        raise CoatHertzError(f"{name}: {number} is beyond the largest floating-point number (~1.8e308)")
     if unit == "":
         if math.isinf(value) or dimension == "angle":
             return value
@@ -78,4 +81,7 @@ def parse_quantity(text: str | float | int, dimension: str, *, name: str = "valu
         )
     if unit not in table:
         raise CoatHertzError(f"{name}: unit {unit!r} is not a {dimension} unit; use one of {list(table)}")
-    return value * table[unit]
+    si = value * table[unit]
+    if math.isinf(si) and not math.isinf(value):
+        raise CoatHertzError(f"{name}: {text!r} overflows in SI units (beyond ~1.8e308 {next(iter(table))})")
+    return si

@@ -26,6 +26,7 @@ from coathertz.axisym.solver import (
 from coathertz.blas import blas_threads
 from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError
+from coathertz.methods import require_case
 from coathertz.results import ContactResult
 
 ModelValidityWarning = getattr(errors, "ModelValidityWarning", UserWarning)
@@ -147,7 +148,7 @@ class AxisymMethod:
     def solve(self, case: ContactCase) -> ContactResult:
         """Solve one circular case under load control; raises for elliptical cases."""
         with single_thread_blas():
-            return self._solve(case)
+            return self._solve(require_case(case, self.name))
 
     def _solve(self, case: ContactCase) -> ContactResult:
         if not isinstance(case, ContactCase):
@@ -186,7 +187,8 @@ class AxisymMethod:
         if auto and modes_needed(pc.h_min / sol.a, self.c_modes) > 1.5 * N_MAX:
             msg = (f"h/a = {pc.h_min / sol.a:.3g}: the rule asks for "
                    f"{modes_needed(pc.h_min / sol.a, self.c_modes)} Legendre modes, capped at {N_MAX}; "
-                   "a and p0 may be less accurate than 1e-8 (pass n_modes to refine)")
+                   "a and p0 may be less accurate than 1e-8 (to refine, give more Legendre modes: "
+                   "--modes N on the command line, n_modes=N in Python, up to 400)")
             warnings.warn(msg, UserWarning, stacklevel=2)
             meta["accuracy"] = msg
         if sol.a / R > VALIDITY_A_OVER_R:

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import pkgutil
 import sys
 import warnings
@@ -48,7 +49,9 @@ def main(argv: Sequence[str] | None = None) -> int:
 
     Exit status: 0 success, 1 regression drift (``verify --baseline``), 2 bad input, a solver
     that did not converge, or a file that cannot be read or written (one-line message on
-    stderr, no traceback), 130 interrupted. Warnings go to stderr as ``coathertz CMD: warning:``.
+    stderr, no traceback), 130 interrupted, 141 (128 + SIGPIPE) when the reader of the output
+    went away (``| head``: quietly, as Unix tools do). Warnings go to stderr as
+    ``coathertz CMD: warning:``.
     """
     parser = build_parser()
     args = parser.parse_args(argv)
@@ -60,10 +63,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     with warnings.catch_warnings():
         warnings.showwarning = show
         try:
-            return int(args._run(args) or 0)
+            status = int(args._run(args) or 0)
+            sys.stdout.flush()  # a closed pipe shows here, not in the interpreter's exit
+            return status
         except (CoatHertzError, ConvergenceError) as exc:
             print(f"{prefix}: error: {exc}", file=sys.stderr)
             return 2
+        except BrokenPipeError:  # stdout closed by its reader: stop quietly
+            _silence_stdout()
+            return 141
         except OSError as exc:  # a file the command had to read or write
             where = f" {exc.filename!r}" if exc.filename else ""
             print(f"{prefix}: error: cannot access{where}: {exc.strerror or exc}", file=sys.stderr)
@@ -75,6 +83,15 @@ def main(argv: Sequence[str] | None = None) -> int:
         except KeyboardInterrupt:
             print(f"{prefix}: interrupted", file=sys.stderr)
             return 130
+
+
+def _silence_stdout() -> None:
+    """Point stdout at /dev/null so that the interpreter's final flush raises nothing."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError):  # pragma: no cover - stdout without a descriptor
+        pass
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -4,8 +4,10 @@ before computing, the validity check of every printed result, JSON and tables.""
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
 import tempfile
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -132,7 +134,28 @@ def check_output_file(path: str | Path, flag: str) -> Path:
         raise CoatHertzError(f"{flag} {str(path)!r}: {str(parent)!r} is not a folder")
     if not os.access(parent, os.W_OK):
         raise CoatHertzError(f"{flag} {str(path)!r}: the folder {str(parent)!r} is not writable")
+    existed = p.exists()
+    try:  # os.access says yes to root everywhere, /proc included: open it for real
+        with open(p, "ab"):
+            pass
+    except OSError as exc:
+        raise CoatHertzError(f"{flag} {str(path)!r}: cannot write there ({exc.strerror or exc}); "
+                             "give a writable file name") from None
+    if not existed:
+        with contextlib.suppress(OSError):
+            p.unlink()
     return p
+
+
+@contextlib.contextmanager
+def writing(path: str | Path, flag: str) -> Iterator[Path]:
+    """Turn an error while writing ``path`` (disk full, quota, a device) into one line that
+    names the flag and the file: ``with writing(out, "--vtu") as p: ...``."""
+    try:
+        yield Path(path)
+    except OSError as exc:
+        raise CoatHertzError(f"{flag} {str(path)!r}: writing failed ({exc.strerror or exc}); "
+                             "the file is incomplete") from None
 
 
 def output_dir(path: str | Path, flag: str = "--out") -> Path:
@@ -210,8 +233,10 @@ def add_fields_argument(parser: argparse.ArgumentParser, what: str) -> None:
 
 
 def save_fields(path: str | Path | None, res: ContactResult) -> None:
-    """Write ``res.fields`` to ``path`` (checked by :func:`check_output_file` before solving)."""
+    """Write ``res.fields`` to ``path`` (checked by :func:`check_output_file` before solving),
+    under exactly that name (NumPy's ``.npz`` format whatever the suffix)."""
     if path:
         import numpy as np
 
-        np.savez_compressed(path, **{k: np.asarray(v) for k, v in res.fields.items()})
+        with writing(path, "--save-fields"), open(path, "wb") as f:
+            np.savez_compressed(f, **{k: np.asarray(v) for k, v in res.fields.items()})

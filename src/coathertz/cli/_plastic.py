@@ -48,7 +48,10 @@ def run_plastic(case: ContactCase, args: argparse.Namespace) -> int:
         paths = write_vtu_series(res, args.vtu_dir)
         print(f"{len(paths)} VTU files written to {args.vtu_dir}", file=sys.stderr)
     if args.out_json:
-        res.write_json(args.out_json)
+        from coathertz.cli._common import writing
+
+        with writing(args.out_json, "--out-json"):
+            res.write_json(args.out_json)
     if args.json:
         print(json.dumps(res.to_json()["curves"] | {"meta": res.to_json()["meta"]}, indent=1))
         return 0

@@ -61,5 +61,5 @@ def run(args: argparse.Namespace) -> int:
     print(format_table(["", "value", f"/ Hertz ({norm.kind})"], rows))
     print(f"maximum pressure {where}")
     if args.save_fields:
-        print(f"fields written to {args.save_fields}")
+        print(f"fields written to {args.save_fields} (NumPy .npz archive)")
     return 0

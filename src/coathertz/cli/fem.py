@@ -64,6 +64,7 @@ def run(args: argparse.Namespace) -> int:
         list_examples,
         output_dir,
         print_json_or_header,
+        writing,
     )
     from coathertz.errors import CoatHertzError
     from coathertz.fem.method import FEMMethod
@@ -73,6 +74,9 @@ def run(args: argparse.Namespace) -> int:
     case = case_from_args(args)
     if args.vtu:
         check_output_file(args.vtu, "--vtu")
+        if not str(args.vtu).lower().endswith(".vtu"):
+            raise CoatHertzError(f"--vtu {args.vtu!r}: the file name must end in .vtu (VTK "
+                                 "unstructured grid for ParaView), e.g. --vtu mesh.vtu")
     if args.plastic:
         if not 1 <= args.steps <= 10_000:
             raise CoatHertzError("--steps: load increments to W must be an integer in [1, 10000], "
@@ -90,7 +94,8 @@ def run(args: argparse.Namespace) -> int:
     if args.vtu:
         from coathertz.fem.io import write_vtu
 
-        write_vtu(args.vtu, model, path.x)
+        with writing(args.vtu, "--vtu"):
+            write_vtu(args.vtu, model, path.x)
     if print_json_or_header(case, res, args.json):
         return 0
     norm = case.normalisers

@@ -90,5 +90,5 @@ def run(args: argparse.Namespace) -> int:
                  ["r_b [um]", f"{res.r_b * 1e6:.5g}", f"{res.r_b / norm.r_b0:.5f}"]]
     print(format_table(["", "value", f"/ Hertz ({norm.kind})"], rows))
     if args.save_fields:
-        print(f"fields written to {args.save_fields}")
+        print(f"fields written to {args.save_fields} (NumPy .npz archive)")
     return 0

@@ -21,7 +21,7 @@ import time
 from pathlib import Path
 
 NAME = "fit-alpha"
-HELP = "refit the extended-Hertz alpha (issue 10) from a stored sweep; writes the refit data file"
+HELP = "refit the extended-Hertz alpha to exact solutions from a stored sweep; writes the refit data file"
 
 SWEEP_FORMAT = "coathertz-refit-sweep/1"
 
@@ -72,6 +72,20 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="compare the fitted coefficients with this data file; exit 1 if they differ")
 
 
+def _grid(text: str, dims: int, flag: str) -> tuple[int, ...]:
+    """``"33,17,17"`` -> (33, 17, 17): ``dims`` node counts, each at least 2."""
+    from coathertz.errors import CoatHertzError
+
+    try:
+        shape = tuple(int(x) for x in text.split(","))
+    except ValueError:
+        shape = ()
+    if len(shape) != dims or min(shape) < 2:
+        raise CoatHertzError(f"{flag} expects {dims} comma-separated integers >= 2 (nodes per "
+                             f"axis), got {text!r}")
+    return shape
+
+
 def _read_text(path: Path) -> str:
     if path.suffix == ".gz":
         import gzip
@@ -81,10 +95,26 @@ def _read_text(path: Path) -> str:
 
 
 def load_sweep(path: Path) -> tuple[dict, dict]:
+    import zlib
+
     from coathertz.errors import CoatHertzError
 
-    d = json.loads(_read_text(Path(path)))
-    if d.get("format") != SWEEP_FORMAT:
+    expect = "gzip-compressed JSON" if Path(path).suffix == ".gz" else "JSON"
+    if Path(path).is_dir():
+        raise CoatHertzError(f"--sweep {str(path)!r} is a folder; give an exported sweep file")
+    try:
+        d = json.loads(_read_text(Path(path)))
+    except (EOFError, zlib.error, UnicodeDecodeError, json.JSONDecodeError) as exc:
+        raise CoatHertzError(f"--sweep {str(path)!r} is not {expect} ({exc}); give a sweep written "
+                             "by fit-alpha --export-sweep") from None
+    except OSError as exc:
+        if exc.errno is None:  # gzip.BadGzipFile: not a gzip file
+            raise CoatHertzError(f"--sweep {str(path)!r} is not {expect} ({exc}); give a sweep "
+                                 "written by fit-alpha --export-sweep") from None
+        raise
+    if not isinstance(d, dict) or not isinstance(d.get("columns"), dict):
+        d = {"format": None} if not isinstance(d, dict) else d
+    if d.get("format") != SWEEP_FORMAT or not isinstance(d.get("columns"), dict):
         raise CoatHertzError(f"{path}: not a refit sweep (format {d.get('format')!r}, "
                              f"expected {SWEEP_FORMAT!r})")
     cols = {k: [float("nan") if v is None else v for v in col] for k, col in d["columns"].items()}
@@ -135,11 +165,11 @@ def solve_sweep(args) -> tuple[dict, dict]:
             if c not in reused and c in wanted]
     for cfg, m in plan:
         if cfg == "elastic":
-            eshape = tuple(int(x) for x in args.elastic_grid.split(","))
+            eshape = _grid(args.elastic_grid, 3, "--elastic-grid")
             pts = (S.design_grid_elastic(eshape) + S.design_random("elastic", args.valid_elastic, 2)  # type: ignore[arg-type]
                    + S.design_random_ring(args.valid_ring) + S.design_grid_patch() + S.design_grid_ring())
         elif cfg == "rigid":
-            rshape = tuple(int(x) for x in args.rigid_grid.split(","))
+            rshape = _grid(args.rigid_grid, 2, "--rigid-grid")
             pts = (S.design_grid_rigid(rshape) + S.design_random("rigid", args.valid_rigid, 2)  # type: ignore[arg-type]
                    + S.design_random("rigid", args.valid_rigid_spread, 3, spread_nu=True))
         else:
@@ -226,6 +256,8 @@ def compare(new: dict, old: dict) -> float:
 def run(args: argparse.Namespace) -> int:
     from coathertz.refit.build import build
 
+    _grid(args.elastic_grid, 3, "--elastic-grid")  # before any solving
+    _grid(args.rigid_grid, 2, "--rigid-grid")
     if args.sweep:
         table, prov = load_sweep(args.sweep)
         prov = {**prov, "sweep_file": args.sweep.name}

@@ -57,6 +57,7 @@ from coathertz.fft.solver import (
 )
 from coathertz.hertz import pressure_elliptical
 from coathertz.materials import Body
+from coathertz.methods import require_case
 from coathertz.results import ContactResult
 
 _CACHE: OrderedDict = OrderedDict()
@@ -274,7 +275,7 @@ class FFTMethod:
 
     def solve(self, case: ContactCase, grid: Grid | None = None) -> ContactResult:
         """Solve one case (re-gridding if ``adapt``); raises ConvergenceError on failure."""
-        return self.solve_many([case], grid=grid)[0]
+        return self.solve_many([require_case(case, self.name)], grid=grid)[0]
 
     def solve_many(
         self,

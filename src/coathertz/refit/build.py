@@ -82,7 +82,7 @@ def _bins(config: str, cols, errs: Mapping[str, np.ndarray]) -> dict:
 
 
 def paper_bars(config: str, q: str, cols) -> np.ndarray:
-    """The paper's rule on the same points (eq 19 with NOTES.md fill, Appendix A rigid, eq 21)."""
+    """The paper's rule on the same points (eq 19 with docs/paper-notes.md fill, Appendix A rigid, eq 21)."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         if config == "rigid":
