@@ -179,3 +179,18 @@ def test_sigint_to_the_process_group_prints_no_worker_traceback(tmp_path):
     assert p.returncode == 130, (p.returncode, err)
     assert "Process ForkProcess" not in err and "Traceback" not in err, err
     assert "interrupted" in err, err
+
+
+def test_disk_full_while_writing_the_report_names_the_file(inputs, capsys, monkeypatch):
+    import errno
+
+    import coathertz.report
+
+    def full(results, out, *args, **kw):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(out / "fig3_errors.png"))
+
+    monkeypatch.setattr(coathertz.report, "write_report", full)
+    assert main([*VERIFY, "--out", "rep"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("coathertz verify: error: --out 'rep': writing 'rep/fig3_errors.png' failed "
+                          "(No space left on device)"), err

@@ -154,8 +154,9 @@ def writing(path: str | Path, flag: str) -> Iterator[Path]:
     try:
         yield Path(path)
     except OSError as exc:
-        raise CoatHertzError(f"{flag} {str(path)!r}: writing failed ({exc.strerror or exc}); "
-                             "the file is incomplete") from None
+        where = f" {str(exc.filename)!r}" if exc.filename and str(exc.filename) != str(path) else ""
+        raise CoatHertzError(f"{flag} {str(path)!r}: writing{where} failed ({exc.strerror or exc}); "
+                             "what was written is incomplete") from None
 
 
 def output_dir(path: str | Path, flag: str = "--out") -> Path:

@@ -155,7 +155,8 @@ def run(args: argparse.Namespace) -> int:
             store.export_json(out / "store.json")
     finally:
         store.close()
-    files = write_report(results, out, prov, {m.NAME: m for m in mods}, baseline, notes)
+    with writing(out, "--out"):  # a full disk: the folder named, not a traceback
+        files = write_report(results, out, prov, {m.NAME: m for m in mods}, baseline, notes)
     print(f"all studies: {verdict_counts([c.verdict for r in results for c in r.claims])}")
     print(f"report: {files.html} ({total:.1f} s)")
     if files.drift is not None:
