@@ -111,9 +111,12 @@ def solve_chunk(method: Method, cases: Sequence[ContactCase]) -> list[tuple[dict
 PROGRESS_INTERVAL = 5.0
 #: Seconds between two redraws of the progress line on a terminal.
 PROGRESS_REDRAW = 0.5
-#: Per-case cost [s] assumed for a method's cost class until one of its cases has finished
-#: (then its measured mean replaces it): only the ratios between the classes matter.
-COST_PRIOR = {"cheap": 1e-3, "moderate": 0.1, "expensive": 5.0}
+#: Seconds of recent history over which the ETA measures the rate of solver time done.
+PROGRESS_WINDOW = 15.0
+#: Per-case solver time [s] assumed for a method's cost class until one of its cases has
+#: finished (then its measured mean replaces it); the quick fig-3 study on 2 cores (AMD EPYC)
+#: measured 2.5 ms (closed form), 28 ms (axisym), 0.2 s (FFT) and 2 s (FE) per case.
+COST_PRIOR = {"cheap": 3e-3, "moderate": 0.1, "expensive": 2.0}
 
 
 def _duration(seconds: float) -> str:
@@ -129,10 +132,11 @@ class Progress:
     """Progress of one :func:`run_tasks` call on stderr: cases done, rate, elapsed time and an
     ETA weighted by each method's measured cost per case.
 
-    The ETA is ``elapsed * remaining cost / cost done``, the cost of a case being its method's
-    mean measured time per case (:data:`COST_PRIOR` by cost class for a method none of whose
-    cases has finished yet). The count-based ETA of a progress bar assumes every case costs the
-    same; with FE cases 1000 times the cost of closed-form ones it is off by the mix.
+    The ETA is the cost left over the recent rate of solver time done (:meth:`eta`), the cost of
+    a case being its method's mean measured solver time per case (:data:`COST_PRIOR` by cost
+    class for a method none of whose cases has finished yet). The count-based ETA of a
+    progress bar assumes every case costs the same; with FE cases 1000 times the cost of
+    closed-form ones it is off by the mix.
 
     On a terminal the line is redrawn in place (``\r``) and erased at the end; otherwise (a log
     file) one line is written every :data:`PROGRESS_INTERVAL` seconds.
@@ -153,6 +157,7 @@ class Progress:
         self.interval = (PROGRESS_REDRAW if self.tty else PROGRESS_INTERVAL) if interval is None else interval
         self.clock = clock
         self.t0 = self.last = clock()
+        self.samples: list[tuple[float, float]] = [(self.t0, 0.0)]  # (time, solver seconds done)
         self._width = 0
 
     def cost(self, method: str) -> float:
@@ -161,13 +166,17 @@ class Progress:
         return self.spent[method] / n if n else self.prior.get(method, COST_PRIOR["expensive"])
 
     def eta(self) -> float | None:
-        """Seconds left (None before the first case has finished)."""
-        elapsed = self.clock() - self.t0
-        done_cost = sum(self.done[m] * self.cost(m) for m in self.total)
-        if done_cost <= 0 or elapsed <= 0:
+        """Seconds left (None before the first case has finished): the cost left over the
+        rate at which solver time was done in the last :data:`PROGRESS_WINDOW` seconds (the
+        rate changes when the run passes from cases solved in this process to worker pools)."""
+        now = self.clock()
+        while len(self.samples) > 1 and now - self.samples[1][0] >= PROGRESS_WINDOW:
+            self.samples.pop(0)
+        t_then, spent_then = self.samples[0]
+        rate = (sum(self.spent.values()) - spent_then) / (now - t_then) if now > t_then else 0.0
+        if rate <= 0:
             return None
-        left_cost = sum((self.total[m] - self.done[m]) * self.cost(m) for m in self.total)
-        return elapsed * left_cost / done_cost
+        return sum((self.total[m] - self.done[m]) * self.cost(m) for m in self.total) / rate
 
     def line(self) -> str:
         n, total = sum(self.done.values()), sum(self.total.values())
@@ -186,6 +195,7 @@ class Progress:
         self.done[method] += n
         self.spent[method] += seconds
         now = self.clock()
+        self.samples.append((now, sum(self.spent.values())))
         if self.enabled and now - self.last >= self.interval:
             self.last = now
             self._write(self.line())
@@ -205,6 +215,13 @@ class Progress:
         if self.enabled and self.tty and self._width:
             self._write(" " * self._width)
             self.stream.write("\r")
+
+
+def _case_seconds(scalars: dict | None, fallback: float) -> float:
+    """The solver's own time for one case (``meta["wall_time"]``, measured in the worker), else
+    ``fallback`` (the chunk's time from submission to result, queueing included)."""
+    t = ((scalars or {}).get("meta") or {}).get("wall_time")
+    return float(t) if isinstance(t, int | float) and 0 <= t < float("inf") else fallback
 
 
 def _chunks(tasks: list[Task], chunk_size: int | None) -> list[tuple[Method, list[ContactCase]]]:
@@ -320,7 +337,7 @@ def run_tasks(
             if scalars is not None and (scalars.get("meta") or {}).get("validity"):
                 outside.append(f"{method.name}: {c.label or c.describe()}")
             stored += 1
-            bar.update(method.name, 1, dt / len(cases))
+            bar.update(method.name, 1, _case_seconds(scalars, dt / len(cases)))
             if stop_after is not None and stored >= stop_after:
                 raise RunInterrupted(f"stopped after {stored} results (stop_after)")
         outcome.method_time[method.name] = outcome.method_time.get(method.name, 0.0) + dt
