@@ -74,3 +74,17 @@ def test_disabled_progress_writes_nothing():
         p.update("fft", 1, 10.0)
     p.close()
     assert out.getvalue() == ""
+
+
+def test_the_readme_example_has_the_format_printed():
+    import re
+    from pathlib import Path
+
+    readme = (Path(__file__).resolve().parents[2] / "README.md").read_text()
+    example = re.search(r"e\.g\. `(fig3: [^`]*)`", readme).group(1)
+    clock, out = Clock(), io.StringIO()
+    p = Progress({"fft": 220}, "fig3", stream=out, tty=False, clock=clock)
+    clock.t = 7.0
+    p.update("fft", 193, 7.0)
+    pattern = re.sub(r"\d+(\.\d+)?", r"\\d+(\\.\\d+)?", re.escape(p.line()))
+    assert re.fullmatch(pattern, example), (example, p.line())
