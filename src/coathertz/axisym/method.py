@@ -159,7 +159,8 @@ class AxisymMethod:
                 "the exact axisymmetric method needs a circular contact (use fft)"
             )
         t0 = time.perf_counter()
-        pc = pair_compliance(case, self.interface)
+        interface = case.interface_for(self.interface)
+        pc = pair_compliance(case, interface)
         R = case.R
         rule = self._rule()
         a_init = initial_radius(pc, R, case.W)
@@ -180,7 +181,7 @@ class AxisymMethod:
             "iterations": iters,
             "h_over_a": pc.h_min / sol.a if math.isfinite(pc.h_min) else None,  # None: uncoated
             "E_ref": pc.E_ref,
-            "interface": self.interface,
+            "interface": interface,
             "settings": dict(self.settings()),
         }
         if auto and modes_needed(pc.h_min / sol.a, self.c_modes) > 1.5 * N_MAX:

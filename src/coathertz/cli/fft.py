@@ -21,15 +21,12 @@ def _layer_cells(text: str) -> float | None:
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    from coathertz.fft.frf import INTERFACES
     from coathertz.fft.grid import DEFAULT_N
     from coathertz.fft.method import LAYER_CELLS_MIN
 
     add_case_arguments(parser)
     parser.add_argument("--grid", type=int, default=None, metavar="N",
                         help=f"cells along each side of the domain (default {DEFAULT_N}, >= 16)")
-    parser.add_argument("--interface", default=INTERFACES[0], choices=INTERFACES,
-                        help=f"coating/substrate interface (default: {INTERFACES[0]}, the paper's model)")
     parser.add_argument("--spacing-ratio", type=float, default=None,
                         help="dy/dx (default: r_b/r_a; the paper's ellipses use 1/3)")
     parser.add_argument("--layer-cells", type=_layer_cells, default=LAYER_CELLS_MIN, metavar="C|off",
@@ -61,7 +58,6 @@ def run(args: argparse.Namespace) -> int:
         check_output_file(args.save_fields, "--save-fields")
     method = FFTMethod(
         n=DEFAULT_N if args.grid is None else args.grid,
-        interface=args.interface,
         spacing_ratio=args.spacing_ratio,
         layer_cells=args.layer_cells,
     )

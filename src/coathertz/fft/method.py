@@ -432,7 +432,7 @@ class FFTMethod:
         the cost of the coarse solves in transform pairs of ``grid``.
         """
         coarse = Grid(grid.nx // 2, grid.ny // 2, 2 * grid.dx, 2 * grid.dy)
-        kern = np.stack([case_coefficients(c, coarse, self.interface) for c in cases])
+        kern = np.stack([case_coefficients(c, coarse, c.interface_for(self.interface)) for c in cases])
         g0 = np.stack([initial_gap(c, coarse) for c in cases])
         if min(coarse.nx, coarse.ny) >= NESTED_MIN_N:  # nested in turn
             p0, cost = self._coarse_start(cases, coarse, be)
@@ -477,7 +477,7 @@ class FFTMethod:
                 if new is not None:  # start from the probe, interpolated to the new grid
                     p_c = [prolong_pressure(p_c[0], grid, new)]
                     probe_cost, moved, grid = cost, True, new
-        kern = np.stack([case_coefficients(c, grid, self.interface) for c in cases])
+        kern = np.stack([case_coefficients(c, grid, c.interface_for(self.interface)) for c in cases])
         g0 = np.stack([initial_gap(c, grid) for c in cases])
         W = np.array([c.W for c in cases])
         X, Y = np.meshgrid(grid.x, grid.y)
@@ -515,7 +515,7 @@ class FFTMethod:
             # a by -0.18 % at E = 1, H = 0.01, and did not converge with n)
             hertzian = all(
                 b.coating is None
-                or (b.coating.material == b.material and self.interface == "bonded")
+                or (b.coating.material == b.material and c.interface_for(self.interface) == "bonded")
                 for b in (c.body1, c.body2)
             )
             if not (hertzian and circular):
@@ -560,6 +560,7 @@ class FFTMethod:
                 "radius_fit_failed": fit is None,
                 "r_p0": float(math.hypot(grid.x[i0[1]], grid.y[i0[0]])),
                 "extent": [ext_x, ext_y],
+                "interface": c.interface_for(self.interface),
                 "settings": dict(self.settings()),
             }
             fields = {"pressure": p, "displacement": sol.u[k], "x": grid.x, "y": grid.y}
