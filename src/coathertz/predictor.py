@@ -102,8 +102,15 @@ class ClosedFormMethod:
             "wall_time": time.perf_counter() - t0,
         }
         if bound is not None:
-            meta["refit_bound"] = {"config": bound.config, "max_abs_err_percent": dict(bound.values),
+            from coathertz.refit.rule import BOUND_MARGIN
+
+            meta["refit_bound"] = {"config": bound.config, "validated": bound.validated,
+                                   # None where there is no validated bound (outside the region
+                                   # measured, or a configuration that was not fitted)
+                                   "bound_percent": bound.bound_values, "margin": BOUND_MARGIN,
+                                   "max_abs_err_percent": dict(bound.values),
                                    "region": bound.region, "n_validation": bound.n_points,
-                                   "in_range": bound.in_range, "notes": list(bound.notes),
-                                   "form": bound.form, "text": bound.describe()}
+                                   "in_range": bound.in_range, "fitted": bound.fitted,
+                                   "notes": list(bound.notes), "form": bound.form,
+                                   "text": bound.describe()}
         return ContactResult(self.name, pred.delta, pred.a, pred.p0, case.W, pred.r_a, pred.r_b, meta)
