@@ -34,8 +34,22 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "(1.5 times that for a coating over 4 times stiffer than its "
                              "substrate); a thinner one is solved again on a finer grid (default "
                              f"{LAYER_CELLS_MIN:g}; off: the grid N as given, flagged)")
+    parser.add_argument("--max-memory", type=_gib, default=None, metavar="GB",
+                        help="memory one solve may take, in GiB (default: a quarter of the machine's, "
+                             "at most 4); a larger grid is refused before it is allocated, and the "
+                             "thin-coating refinement stays within it")
     parser.add_argument("--json", action="store_true", help="machine-readable output")
     add_fields_argument(parser, "x, y, pressure and displacement arrays")
+
+
+def _gib(text: str) -> float:
+    try:
+        v = float(text)
+    except ValueError:
+        v = math.nan
+    if not 0 < v < math.inf:
+        raise argparse.ArgumentTypeError(f"expected a number of GiB > 0, got {text!r}")
+    return v
 
 
 def run(args: argparse.Namespace) -> int:
@@ -60,6 +74,7 @@ def run(args: argparse.Namespace) -> int:
         n=DEFAULT_N if args.grid is None else args.grid,
         spacing_ratio=args.spacing_ratio,
         layer_cells=args.layer_cells,
+        max_memory_gb=args.max_memory,
     )
     res = finish(case, method.solve(case))
     save_fields(args.save_fields, res)
