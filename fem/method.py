@@ -332,11 +332,12 @@ class FEMMethod:
             return r**2 / (2.0 * eq.R)  # Hertz paraboloid
 
         a_ref = self._predict_a(eq, case.W)
+        interface = case.interface_for(self.interface)
         remeshes = 0
         active0 = None
         while True:
             self.check_size(a_ref, body, eq.R)
-            lm = build_mesh(a_ref, h, self.spec, rigid_base, self.interface)
+            lm = build_mesh(a_ref, h, self.spec, rigid_base, interface)
             model = FEModel(lm, self._regions(lm, body), ff_mat, FARFIELDS[self.farfield](),
                             legacy_assembly=not self._reuse_factorisation)
             if any(reg.mixed for reg in model.regions) or model.tie.shape[1]:
@@ -379,6 +380,7 @@ class FEMMethod:
         wall = time.perf_counter() - t0
         meta = {
             "settings": self.settings(),
+            "interface": interface,
             "mesh_level": self.mesh,
             "elements": lm.n_elements,
             "dofs": int(model.n_dofs),

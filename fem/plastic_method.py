@@ -190,6 +190,10 @@ def solve_plastic(
     if eq is None:
         raise CoatHertzError("the elastic-plastic FE model supports a rigid sphere on a (coated) body or two "
                              "identical bodies; got: " + case.describe())
+    if case.interface_for("bonded") != "bonded":
+        raise CoatHertzError("the elastic-plastic FE model has a bonded coating/substrate interface only; "
+                             "the case's coating rests on its substrate without friction (interface = "
+                             "'frictionless'): solve it elastically with fem, axisym or fft")
     spec = PLASTIC_MESHES[mesh] if isinstance(mesh, str) and mesh in PLASTIC_MESHES else mesh
     if not isinstance(spec, MeshSpec):
         raise CoatHertzError(f"mesh must be one of {sorted(PLASTIC_MESHES)} or a MeshSpec, got {mesh!r}")

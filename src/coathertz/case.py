@@ -23,7 +23,7 @@ from coathertz.hertz import (
     hertz_elliptical,
     relative_radii,
 )
-from coathertz.materials import Body, Coating, Material
+from coathertz.materials import INTERFACES, Body, Coating, Material
 
 
 @dataclass(frozen=True)
@@ -103,7 +103,7 @@ class ContactCase:
         bodies = []
         for b in (self.body1, self.body2):
             if b.coating is not None:
-                b = Body(b.material, Coating(b.coating.material, h), b.Rx, b.Ry, b.name)
+                b = Body(b.material, Coating(b.coating.material, h, b.coating.interface), b.Rx, b.Ry, b.name)
             bodies.append(b)
         return self.replace(body1=bodies[0], body2=bodies[1])
 
@@ -139,6 +139,21 @@ class ContactCase:
     @property
     def is_coated(self) -> bool:
         return bool(self.coated_bodies)
+
+    def interface_for(self, setting: str = "bonded") -> str:
+        """The coating/substrate interface a method models for this case.
+
+        ``frictionless`` when a coated body's coating says so (:attr:`Coating.interface`) or the
+        method's own ``setting`` asks for it (a study's variant solving bonded cases as
+        frictionless); else ``bonded``. A frictionless coating in the case is therefore never
+        solved as a bonded one, whatever the method's default.
+        """
+        if setting not in INTERFACES:
+            raise CoatHertzError(f"interface must be one of {list(INTERFACES)}, got {setting!r}")
+        if setting == "frictionless" or any(b.coating.interface == "frictionless"
+                                            for b in self.coated_bodies):
+            return "frictionless"
+        return "bonded"
 
     @property
     def E_star_s(self) -> float:
@@ -255,6 +270,8 @@ class ContactCase:
             if b.coating is not None:
                 c = b.coating
                 txt += f" + coating E={c.material.E / 1e9:.4g} GPa nu={c.material.nu:g} h={c.h * 1e6:.4g} um"
+                if c.interface != "bonded":
+                    txt += f" ({c.interface} interface)"
             parts.append(txt)
         return "; ".join(parts)
 

@@ -12,7 +12,10 @@ Format (every dimensional value carries its unit; ``"inf"`` is a flat surface)::
 
     [body2]                    # the (coated) half-space
     material = { E = "200 GPa", nu = 0.3 }
-    coating = { E = "380 GPa", nu = 0.17, h = "40 um" }
+    coating = { E = "380 GPa", nu = 0.17, h = "40 um" }   # interface = "frictionless" optional
+
+``interface = "bonded"`` (default, the paper's model) or ``"frictionless"`` at the top level sets
+every coating's interface; a coating table's own ``interface`` key overrides it.
 
 Optional J2 plasticity (FE ``--plastic`` only) on any elastic material or coating table:
 ``Y = "1.2 GPa"`` (yield stress) with ``hardening = "perfect"`` (default), ``"linear"``
@@ -30,11 +33,11 @@ from typing import Any
 
 from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError
-from coathertz.materials import RIGID, Body, Coating, Material, Plasticity
+from coathertz.materials import INTERFACES, RIGID, Body, Coating, Material, Plasticity
 from coathertz.units import parse_quantity
 
 _BODY_KEYS = {"material", "coating", "R", "Rx", "Ry", "name"}
-_TOP_KEYS = {"label", "W", "theta", "body1", "body2"}
+_TOP_KEYS = {"label", "W", "theta", "interface", "body1", "body2"}
 #: Largest |theta| a case file accepts [rad]: one full turn either way (eq 3b is pi-periodic).
 THETA_MAX = 2.0 * math.pi
 
@@ -114,7 +117,13 @@ def _plasticity(spec: dict, where: str) -> Plasticity | None:
     return Plasticity(**kw)
 
 
-def _body(spec: Any, where: str) -> Body:
+def _interface(value: Any, where: str) -> str:
+    if value not in INTERFACES:
+        raise CoatHertzError(f"{where} must be one of {list(INTERFACES)}, got {value!r}")
+    return value
+
+
+def _body(spec: Any, where: str, interface: str = "bonded") -> Body:
     if not isinstance(spec, dict):
         raise CoatHertzError(f"[{where}] must be a table")
     unknown = set(spec) - _BODY_KEYS
@@ -128,10 +137,11 @@ def _body(spec: Any, where: str) -> Body:
         c = spec["coating"]
         if not isinstance(c, dict) or "h" not in c:
             raise CoatHertzError(f"[{where}] coating must be a table with E, nu and h, got {c!r}")
-        cmat = _material({k: v for k, v in c.items() if k != "h"}, f"{where}.coating")
+        cmat = _material({k: v for k, v in c.items() if k not in ("h", "interface")}, f"{where}.coating")
         h = quantity(c["h"], "length", f"[{where}] coating thickness h", minimum=">=0")
+        interface = _interface(c.get("interface", interface), f"[{where}] coating interface")
         try:
-            coating = Coating(cmat, h)
+            coating = Coating(cmat, h, interface)
         except CoatHertzError as exc:
             raise CoatHertzError(f"[{where}] coating: {exc}") from None
     if "R" in spec and ("Rx" in spec or "Ry" in spec):
@@ -160,7 +170,9 @@ def case_from_dict(data: dict) -> ContactCase:
     if not abs(theta) <= THETA_MAX:  # also NaN; cos(2 theta) of eq (3b) loses every digit past ~1e16
         raise CoatHertzError(f"theta (angle between the bodies' principal planes, eq 3b) must be in "
                              f"[-360 deg, 360 deg], got {data['theta']!r}")
-    return ContactCase(_body(data["body1"], "body1"), _body(data["body2"], "body2"), W, theta,
+    interface = _interface(data.get("interface", "bonded"), "interface")
+    return ContactCase(_body(data["body1"], "body1", interface), _body(data["body2"], "body2", interface),
+                       W, theta,
                        label=str(data.get("label", "")))
 
 
@@ -238,8 +250,9 @@ def case_to_toml(case: ContactCase) -> str:
         lines += ["", f"[body{i}]", f"material = {_mat(b.material)}"]
         if b.coating is not None:
             c = b.coating
+            iface = "" if c.interface == "bonded" else f', interface = "{c.interface}"'
             lines.append(f'coating = {{ E = "{_q(c.material.E, "GPa", 1e9)}", nu = {c.material.nu!r}, '
-                         f'h = "{_q(c.h, "um", 1e-6)}"{_plastic_toml(c.material)} }}')
+                         f'h = "{_q(c.h, "um", 1e-6)}"{iface}{_plastic_toml(c.material)} }}')
         lines.append(f'Rx = "{_q(b.Rx, "mm", 1e-3)}"')
         lines.append(f'Ry = "{_q(b.Ry, "mm", 1e-3)}"')
     return "\n".join(lines) + "\n"

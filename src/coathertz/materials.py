@@ -188,9 +188,14 @@ class Material:
 RIGID = Material.rigid()
 
 
+#: Coating/substrate interfaces the case model knows: the paper's bonded layer and a layer
+#: resting on its substrate without friction.
+INTERFACES = ("bonded", "frictionless")
+
+
 @dataclass(frozen=True)
 class Coating:
-    """A layer of uniform thickness ``h`` perfectly bonded to its substrate.
+    """A layer of uniform thickness ``h`` on its substrate.
 
     Parameters
     ----------
@@ -198,12 +203,20 @@ class Coating:
         Coating material; must be elastic (a rigid coating is rejected).
     h
         Thickness [m], ``0 <= h < inf``.
+    interface
+        How the layer holds to its substrate (:data:`INTERFACES`): ``bonded`` (perfectly
+        bonded, the paper's model, eq 13) or ``frictionless`` (resting on it without friction:
+        normal displacement and normal stress continuous, no shear transmitted).
     """
 
     material: Material
     h: float
+    interface: str = "bonded"
 
     def __post_init__(self) -> None:
+        if self.interface not in INTERFACES:
+            raise CoatHertzError(f"coating interface must be one of {list(INTERFACES)}, "
+                                 f"got {self.interface!r}")
         if not isinstance(self.material, Material):
             raise CoatHertzError(f"coating material must be a Material, got {self.material!r}")
         if self.material.is_rigid:

@@ -11,7 +11,8 @@ from typing import Any
 from coathertz.alpha import EQ21_RULE, PAPER_RULE, AlphaRule, Alphas
 from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError
-from coathertz.extended import predict
+from coathertz.extended import predict, refuse_frictionless
+from coathertz.materials import INTERFACES
 from coathertz.methods import require_case
 from coathertz.results import ContactResult
 
@@ -37,6 +38,11 @@ class ClosedFormMethod:
         Explicit alpha values overriding the curves.
     warn
         Issue FittedRangeWarning outside the fitted ranges (studies sweep past them on purpose).
+    interface
+        ``bonded`` (the only interface the closed form models) or ``frictionless``: a coated case
+        with a frictionless interface (here or in the case's coating) is refused with a
+        :class:`CoatHertzError` naming the methods that model it, never answered as bonded;
+        :meth:`supports` is False for it, so studies leave it to the other methods.
     """
 
     # method metadata (coathertz.methods): class attributes, not dataclass fields
@@ -58,10 +64,13 @@ class ClosedFormMethod:
     alphas: Alphas | None = None
     warn: bool = True
     name: str = "closed-form"
+    interface: str = "bonded"
 
     def __post_init__(self) -> None:
         if self.alpha_rule not in RULE_NAMES:
             raise CoatHertzError(f"alpha_rule must be one of {sorted(RULE_NAMES)}, got {self.alpha_rule!r}")
+        if self.interface not in INTERFACES:
+            raise CoatHertzError(f"interface must be one of {list(INTERFACES)}, got {self.interface!r}")
 
     def settings(self) -> Mapping[str, Any]:
         return {"alpha_rule": self.alpha_rule,
@@ -69,10 +78,11 @@ class ClosedFormMethod:
                                                             self.alphas.p, self.alphas.b]}
 
     def supports(self, case: ContactCase) -> bool:
-        return True
+        return not (case.is_coated and case.interface_for(self.interface) == "frictionless")
 
     def solve(self, case: ContactCase) -> ContactResult:
         require_case(case, self.name)
+        refuse_frictionless(case, self.interface)
         t0 = time.perf_counter()
         bound = None
         with warnings.catch_warnings():
@@ -94,8 +104,15 @@ class ClosedFormMethod:
             "wall_time": time.perf_counter() - t0,
         }
         if bound is not None:
-            meta["refit_bound"] = {"config": bound.config, "max_abs_err_percent": dict(bound.values),
+            from coathertz.refit.rule import BOUND_MARGIN
+
+            meta["refit_bound"] = {"config": bound.config, "validated": bound.validated,
+                                   # None where there is no validated bound (outside the region
+                                   # measured, or a configuration that was not fitted)
+                                   "bound_percent": bound.bound_values, "margin": BOUND_MARGIN,
+                                   "max_abs_err_percent": dict(bound.values),
                                    "region": bound.region, "n_validation": bound.n_points,
-                                   "in_range": bound.in_range, "notes": list(bound.notes),
-                                   "form": bound.form, "text": bound.describe()}
+                                   "in_range": bound.in_range, "fitted": bound.fitted,
+                                   "notes": list(bound.notes), "form": bound.form,
+                                   "text": bound.describe()}
         return ContactResult(self.name, pred.delta, pred.a, pred.p0, case.W, pred.r_a, pred.r_b, meta)

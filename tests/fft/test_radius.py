@@ -248,7 +248,7 @@ def test_sub_cell_coating_is_flagged_and_resolved_by_the_suggested_grid():
     assert meta["layer_cells"] == pytest.approx(0.64, abs=0.01)
     assert meta["accuracy"] == str(rec[0].message)
     n_need = int(meta["accuracy"].split("n >= ")[1].split()[0])
-    assert abs(err) < 0.0017 + 2e-5, f"{err:+.3e}: the note's bound is 0.17 %"
+    assert abs(err) < 0.003, f"{err:+.3e}: the note's bound is 0.3 %"
     err2, meta2 = _thin_error(key, n_need)
     assert meta2["layer_cells"] >= 1.0 and "accuracy" not in meta2, meta2.get("accuracy")
     assert abs(err2) < 1e-3, f"a error {err2:+.2e} at n = {n_need} (goal 0.1 %)"
@@ -270,15 +270,60 @@ def test_sub_cell_coating_is_resolved_by_default():
     assert abs(ref["a_before"] / A_THIN[key] - 1) > 1.5e-3  # the grid's own radius, kept
 
 
-def test_refinement_beyond_its_cap_is_left_to_the_note():
-    """More than ``LAYER_N_FACTOR n`` needed: not refined, flagged with the n that would do."""
-    from coathertz.fft.method import LAYER_N_FACTOR
-
+def test_refinement_beyond_the_memory_budget_is_left_to_the_note():
+    """A refinement whose estimated memory exceeds ``max_memory_gb`` is not made; the note says
+    so, with the n that would do and the memory it would take."""
     with pytest.warns(UserWarning, match="cells thick") as rec:
-        _, meta = _thin_error(("bonded", 4.0, 0.01), 32, layer_cells=1.0)
-    assert "layer_refinement" not in meta and meta["layer_cells"] < 1 / LAYER_N_FACTOR
-    n_need = int(str(rec[0].message).split("n >= ")[1].split()[0])
-    assert n_need > LAYER_N_FACTOR * 32, n_need
+        _, meta = _thin_error(("bonded", 4.0, 0.01), 128, max_memory_gb=0.11)  # n = 128 fits, 252 not
+    assert "layer_refinement" not in meta and meta["grid"]["nx"] == 128 and "accuracy" in meta
+    msg = str(rec[0].message)
+    assert "beyond max_memory_gb = 0.11" in msg and "0.3% (1.5 x the largest measured" in msg, msg
+    n_need = int(msg.split("n >= ")[1].split()[0])
+    assert n_need > 128, n_need
+
+
+def test_stiff_thin_coating_is_refined_as_far_as_memory_allows():
+    """E = 10, H = 0.005 at the default n = 128 needs n = 752 (0.25 cells before): refined now
+    (the fixed cap of 4n left it at +0.665 % with a note quoting 0.59 %), a within 0.1 % of the
+    exact method (measured +0.004 %)."""
+    from coathertz.axisym import AxisymMethod
+    from coathertz.refit.sweep import Point, make_case
+
+    case = make_case(Point("elastic", 10.0, 0.005))
+    exact = AxisymMethod().solve(case)
+    r = FFTMethod(workers=1).solve(case)
+    assert r.meta["layer_refinement"]["n"] == 752, r.meta["layer_refinement"]
+    assert "accuracy" not in r.meta
+    assert abs(r.a / exact.a - 1) < 1e-3, f"a error {r.a / exact.a - 1:+.2e} (goal 0.1 %)"
+
+
+@pytest.mark.parametrize("E,H,bound", [(10.0, 0.005, 0.010), (4.0, 0.005, 0.003), (0.25, 0.003, 0.003)])
+def test_unrefined_note_quotes_a_bound_that_holds(E, H, bound):
+    """Left unrefined (``layer_cells=None``), the note's bound holds: measured 0.666 / 0.159 /
+    0.100 % here against the bounds 1.0 / 0.3 / 0.3 % (1.5 x the largest of 70 measured cases)."""
+    from coathertz.axisym import AxisymMethod
+    from coathertz.refit.sweep import Point, make_case
+
+    case = make_case(Point("elastic", E, H))
+    exact = AxisymMethod().solve(case)
+    with pytest.warns(UserWarning, match="cells thick") as rec:
+        r = FFTMethod(workers=1, layer_cells=None).solve(case)
+    assert f"{bound:.1%}" in str(rec[0].message), str(rec[0].message)
+    err = abs(r.a / exact.a - 1)
+    assert err <= bound, f"a error {err:.3%} beyond the quoted {bound:.1%}"
+
+
+def test_memory_guard_refuses_before_allocating():
+    """A grid whose estimate exceeds the budget is refused with the estimate, the limit and a
+    grid that fits (4096^2 took 5.5 GB without a word before)."""
+    from coathertz.fft.method import estimate_memory
+
+    want = r"4096 x 4096 grid needs about 7.1\d GiB .* max_memory_gb = 4 GiB"
+    with pytest.raises(CoatHertzError, match=want):
+        FFTMethod(n=4096, max_memory_gb=4).solve(coated(1.0, 0.1))
+    assert estimate_memory(1024, 1024) > 1.2 * 361 * 1024**2  # measured peak at n = 1024
+    with pytest.raises(CoatHertzError, match="max_memory_gb"):
+        FFTMethod(max_memory_gb=-1)
 
 
 @pytest.mark.parametrize("bad", [0.0, -1.0, 100.0, True, "1", float("nan")])
@@ -332,20 +377,9 @@ def test_a_much_stiffer_coating_needs_one_and_a_half_cells():
     get 1.5 cells (n = 190 here): +0.046 %. Exact a: 3.128466981798888e-05 m (the exact
     method; its refined settings agree to 5e-11)."""
     case = coated(10.0, 0.02)
-    with pytest.warns(UserWarning, match=r"fewer than the 1\.5 .*Ec\*/Es\* = 10"):
+    with pytest.warns(UserWarning, match=r"fewer than the 1\.5 .*Ec\*/Es\* 4-10"):
         raw = FFTMethod(n=128, workers=1, layer_cells=None).solve(case)
     r = FFTMethod(n=128, workers=1).solve(case)
     errs = [x.a / 3.128466981798888e-05 - 1 for x in (raw, r)]
     assert r.meta["layer_refinement"]["n"] == 190 and r.meta["layer_cells"] >= 1.5, r.meta["layer_refinement"]
     assert abs(errs[0]) > 1.5e-3 and abs(errs[1]) < 1e-3, f"a errors raw / refined {errs}"
-
-
-def test_refinement_never_goes_beyond_its_absolute_cap(monkeypatch):
-    """The automatic refinement stays within ``LAYER_N_MAX`` whatever n was requested (memory
-    the user did not ask for); beyond, the result is flagged. Checked with the cap lowered."""
-    import coathertz.fft.method as fm
-
-    monkeypatch.setattr(fm, "LAYER_N_MAX", 200)  # E = 4, H = 0.01 at n = 128 needs 252
-    with pytest.warns(UserWarning, match="cells thick"):
-        _, meta = _thin_error(("bonded", 4.0, 0.01), 128)
-    assert "layer_refinement" not in meta and meta["grid"]["nx"] == 128 and "accuracy" in meta

@@ -12,8 +12,8 @@ def test_predict_refit_prints_rule_and_bound(capsys):
                  "--coating", "380 GPa,0.17,40 um", "--alpha-rule", "refit"]) == 0
     out = capsys.readouterr().out
     assert "alpha (refit)" in out
-    assert "refit rule (elastic, second closed form: eqs 17-18 x smooth correction factor): validated max " \
-           "|error|" in out and "inside the validated range" in out
+    assert "refit rule (elastic, second closed form: eqs 17-18 x smooth correction factor): validated " \
+           "error bound" in out and "inside the validated range" in out
     assert "warning:" not in out
 
 

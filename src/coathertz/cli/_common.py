@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import dataclasses
 import os
 import tempfile
 from collections.abc import Iterator
@@ -15,7 +16,7 @@ from coathertz.case import ContactCase
 from coathertz.casefile import quantity
 from coathertz.errors import CoatHertzError
 from coathertz.jsonsafe import dumps
-from coathertz.materials import RIGID, Body, Coating, Material
+from coathertz.materials import INTERFACES, RIGID, Body, Coating, Material
 from coathertz.results import ContactResult
 
 
@@ -32,6 +33,9 @@ def add_case_arguments(parser: argparse.ArgumentParser) -> None:
                                       "e.g. '200 GPa,0.3'")
     g.add_argument("--substrate", help="substrate (body2) material: 'rigid' or 'E,nu', e.g. '200 GPa,0.3'")
     g.add_argument("--coating", help="coating of body2: 'E,nu,h', e.g. '380 GPa,0.17,40 um'")
+    g.add_argument("--interface", choices=INTERFACES,
+                   help="coating/substrate interface of every coating: bonded (the paper's model; the "
+                        "default unless the case file says otherwise) or frictionless")
 
 
 _CASE_FLAGS = ("W", "R", "indenter", "substrate", "coating")
@@ -69,6 +73,20 @@ def _radius_flag(text: str) -> float:
 
 
 def case_from_args(args: argparse.Namespace) -> ContactCase:
+    """:func:`_case_from_flags`, with ``--interface`` (when given) set on every coating."""
+    case = _case_from_flags(args)
+    interface = getattr(args, "interface", None)
+    if interface is None or not case.is_coated:
+        return case
+
+    def body(b: Body) -> Body:
+        return b if b.coating is None else dataclasses.replace(
+            b, coating=dataclasses.replace(b.coating, interface=interface))
+
+    return case.replace(body1=body(case.body1), body2=body(case.body2))
+
+
+def _case_from_flags(args: argparse.Namespace) -> ContactCase:
     """The case named by ``args.case`` (with the case flags given applied to it), or the case
     assembled from the flags alone.
 
@@ -98,6 +116,8 @@ def case_from_args(args: argparse.Namespace) -> ContactCase:
             mat = _material_flag(given["substrate"], "--substrate", "substrate") if "substrate" in given \
                 else b2.material
             coat = _coating_flag(given["coating"]) if "coating" in given else b2.coating
+            if coat is not None and b2.coating is not None:  # the file's interface stays
+                coat = dataclasses.replace(coat, interface=b2.coating.interface)
             changes["body2"] = Body(mat, coat, b2.Rx, b2.Ry, b2.name)
         note = ", ".join(f"--{k} {v}" for k, v in given.items())
         return case.replace(label=f"{case.label or args.case} with {note}", **changes)

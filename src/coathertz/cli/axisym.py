@@ -11,11 +11,7 @@ HELP = "exact axisymmetric solution of one circular case (delta, a, p0 and its r
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    from coathertz.axisym.kernel import INTERFACES
-
-    add_case_arguments(parser)
-    parser.add_argument("--interface", default=INTERFACES[0], choices=INTERFACES,
-                        help="coating/substrate interface (default: bonded, the paper's model)")
+    add_case_arguments(parser)  # with --interface (the case's coatings)
     parser.add_argument("--modes", type=int, default=None, metavar="N",
                         help="Legendre modes of the Galerkin basis (default: automatic from h/a)")
     parser.add_argument("--json", action="store_true", help="machine-readable output")
@@ -42,14 +38,14 @@ def run(args: argparse.Namespace) -> int:
         check_output_file(args.save_fields, "--save-fields")
     if args.modes is not None and not 2 <= args.modes <= 400:
         raise CoatHertzError(f"--modes: Legendre modes must be an integer in [2, 400], got {args.modes}")
-    method = AxisymMethod(interface=args.interface, n_modes=args.modes)
+    method = AxisymMethod(n_modes=args.modes)
     res = finish(case, method.solve(case))
     save_fields(args.save_fields, res)
     if print_json_or_header(case, res, args.json):
         return 0
     norm = case.normalisers
     m = res.meta
-    print(f"  {args.interface} interface; {m['n_modes']} Legendre modes, {m['n_xi']} xi nodes, "
+    print(f"  {m['interface']} interface; {m['n_modes']} Legendre modes, {m['n_xi']} xi nodes, "
           f"{m['iterations']} load iterations, {m['wall_time'] * 1e3:.1f} ms")
     r_p0 = m["r_p0"]
     where = "on the axis" if r_p0 == 0.0 else f"at r = {r_p0 * 1e6:.4g} um ({r_p0 / res.a:.3f} a)"

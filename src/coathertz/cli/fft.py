@@ -21,15 +21,12 @@ def _layer_cells(text: str) -> float | None:
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    from coathertz.fft.frf import INTERFACES
     from coathertz.fft.grid import DEFAULT_N
     from coathertz.fft.method import LAYER_CELLS_MIN
 
     add_case_arguments(parser)
     parser.add_argument("--grid", type=int, default=None, metavar="N",
                         help=f"cells along each side of the domain (default {DEFAULT_N}, >= 16)")
-    parser.add_argument("--interface", default=INTERFACES[0], choices=INTERFACES,
-                        help=f"coating/substrate interface (default: {INTERFACES[0]}, the paper's model)")
     parser.add_argument("--spacing-ratio", type=float, default=None,
                         help="dy/dx (default: r_b/r_a; the paper's ellipses use 1/3)")
     parser.add_argument("--layer-cells", type=_layer_cells, default=LAYER_CELLS_MIN, metavar="C|off",
@@ -37,8 +34,22 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "(1.5 times that for a coating over 4 times stiffer than its "
                              "substrate); a thinner one is solved again on a finer grid (default "
                              f"{LAYER_CELLS_MIN:g}; off: the grid N as given, flagged)")
+    parser.add_argument("--max-memory", type=_gib, default=None, metavar="GB",
+                        help="memory one solve may take, in GiB (default: a quarter of the machine's, "
+                             "at most 4); a larger grid is refused before it is allocated, and the "
+                             "thin-coating refinement stays within it")
     parser.add_argument("--json", action="store_true", help="machine-readable output")
     add_fields_argument(parser, "x, y, pressure and displacement arrays")
+
+
+def _gib(text: str) -> float:
+    try:
+        v = float(text)
+    except ValueError:
+        v = math.nan
+    if not 0 < v < math.inf:
+        raise argparse.ArgumentTypeError(f"expected a number of GiB > 0, got {text!r}")
+    return v
 
 
 def run(args: argparse.Namespace) -> int:
@@ -61,9 +72,9 @@ def run(args: argparse.Namespace) -> int:
         check_output_file(args.save_fields, "--save-fields")
     method = FFTMethod(
         n=DEFAULT_N if args.grid is None else args.grid,
-        interface=args.interface,
         spacing_ratio=args.spacing_ratio,
         layer_cells=args.layer_cells,
+        max_memory_gb=args.max_memory,
     )
     res = finish(case, method.solve(case))
     save_fields(args.save_fields, res)

@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import os
 import time
 import warnings
 from collections import OrderedDict
@@ -81,23 +82,29 @@ NESTED_TOL = 3e-3
 #: therefore refines such cases by default; a result left below says so (warning,
 #: ``meta["accuracy"]``).
 LAYER_CELLS_MIN = 1.0
-#: The refinement for a thin coating (``FFTMethod.layer_cells``) goes up to this many times
-#: the requested ``n`` (beyond, the result says how far ``a`` can be off).
-LAYER_N_FACTOR = 4
-#: ... and never beyond this n, whatever was requested: an automatic refinement should not
-#: take the memory a user did not ask for (n = 2048 peaked at 1.5 GB resident, homogeneous
-#: case, this machine; n = 4096 would take about four times that).
-LAYER_N_MAX = 1024
+#: Memory of one solve [bytes]: ``MEMORY_BASE + MEMORY_PER_CELL * nx * ny * batch``. Measured
+#: (peak resident set over the interpreter's, one FFT thread, B4C and fig-10 ellipse cases):
+#: 423-428 bytes per cell at n = 256, 374-377 at 512, 360-361 at 1024; 5.5 GB at n = 4096
+#: (328 per cell) was reported. The estimate takes the largest with a margin.
+MEMORY_PER_CELL = 450
+MEMORY_BASE = 100 * 2**20
 #: A coating more than ``STIFF_CONTRAST`` times stiffer than its substrate (Ec*/Es*; outside
 #: the paper's range) needs ``STIFF_FACTOR`` times as many cells. Measured at n = 128, bonded
 #: and frictionless, H = 0.01-0.05: with one cell max |error in a| 0.063 % at E = 6 but
 #: 0.19 % at E = 10 (H = 0.02, 1.02 cells); with 1.5 cells 0.046 % at E = 10.
 STIFF_CONTRAST = 4.0
 STIFF_FACTOR = 1.5
-#: The largest measured |error in a| below the cells needed, quoted in the note: 0.17 % for
-#: E <= 4 (see ``LAYER_CELLS_MIN``); at E = 10 it was 0.59 % (0.51 cells).
-SUB_CELL_RADIUS_ERROR = 0.0017
-SUB_CELL_RADIUS_ERROR_STIFF = 0.0059
+#: Bound on |error in a| quoted where a coating stays thinner than the cells it needs (the
+#: refinement could not be afforded, or was switched off, or the caller gave the grid).
+#: Measured against the exact method at n = 128 with ``layer_cells=None`` over E = 1/4, 1/2, 2,
+#: 4, 10 and H = 5e-4 ... 0.012 (0.025-0.61 cells), bonded and frictionless (70 cases): largest
+#: 0.209 % for E <= 4 (frictionless E = 4, 0.25 cells; 0.17 % was quoted before and did not
+#: hold) and 0.680 % at E = 10 (bonded, 0.41 cells). The bounds are about 1.5 times those.
+#: Stiffer coatings than E = 10 were not measured, and the note says so.
+SUB_CELL_RADIUS_ERROR = 0.003
+SUB_CELL_RADIUS_ERROR_STIFF = 0.010
+#: The modulus ratios Ec*/Es* between which the bounds above were measured.
+SUB_CELL_MEASURED_E_MIN, SUB_CELL_MEASURED_E_MAX = 0.25, 10.0
 #: Coarse levels with at least this many cells per side are preconditioned too (it saved up
 #: to a fifth of the pairs at n = 512 and cost 2-10 % at n = 128, where the coarse levels are
 #: 64 and 32).
@@ -185,13 +192,16 @@ class FFTMethod:
         ``LAYER_CELLS_MIN = 1``; ``STIFF_FACTOR = 1.5`` times that for a coating more than
         ``STIFF_CONTRAST = 4`` times stiffer than its substrate; ``None``: off). Where it
         spans fewer, the case is solved again
-        on the same domain with the ``n`` that gives it that many (at most ``LAYER_N_FACTOR n``
-        and ``LAYER_N_MAX``,
-        from the grid solution prolonged), and ``meta["layer_refinement"]`` records it:
+        on the same domain with the ``n`` that gives it that many (as far as ``max_memory_gb``
+        allows, from the grid solution prolonged), and ``meta["layer_refinement"]`` records it:
         below a cell the coating's edge boundary layer lies inside one cell and no fit of the
         grid solution recovers ``a`` to 0.1 % (see :data:`LAYER_CELLS_MIN`). Where even that
         ``n`` is not enough, or the caller gave the grid, the result carries a warning and
         ``meta["accuracy"]``.
+    max_memory_gb
+        Memory one solve may take [GiB] (default: a quarter of the physical memory, at most
+        4 GiB). A grid whose estimated memory (:func:`estimate_memory`) exceeds it is refused
+        before anything is allocated; the thin-coating refinement goes as far as it allows.
     backend, workers
         ``numpy`` or ``cupy``; ``workers`` FFT threads (``None``: by grid size, see
         :func:`~coathertz.fft.solver.default_workers`: 1 up to n = 256 and in the worker
@@ -236,6 +246,7 @@ class FFTMethod:
     workers: int | None = None
     keep_fields: bool = True
     layer_cells: float | None = LAYER_CELLS_MIN
+    max_memory_gb: float | None = None
     name: str = "fft"
 
     def __post_init__(self) -> None:
@@ -252,7 +263,30 @@ class FFTMethod:
         if lc is not None and not (isinstance(lc, float | int) and not isinstance(lc, bool)
                                    and 0.1 <= lc <= 8.0):
             raise CoatHertzError(f"layer_cells must be None or a number in [0.1, 8], got {lc!r}")
+        mm = self.max_memory_gb
+        if mm is not None and not (isinstance(mm, float | int) and not isinstance(mm, bool)
+                                   and 0 < mm < math.inf):
+            raise CoatHertzError(f"max_memory_gb must be None or satisfy 0 < max_memory_gb < inf, got {mm!r}")
         get_backend(self.backend, self.fft_workers())
+
+    def memory_budget(self) -> float:
+        """Memory one solve may take [bytes]: ``max_memory_gb``, or by default a quarter of the
+        physical memory and at most 4 GiB (:func:`default_max_memory_gb`)."""
+        return (default_max_memory_gb() if self.max_memory_gb is None else self.max_memory_gb) * 2**30
+
+    def check_memory(self, nx: int, ny: int, batch: int = 1) -> None:
+        """Refuse, before anything is allocated, a solve whose estimated memory
+        (:func:`estimate_memory`) exceeds :meth:`memory_budget`."""
+        need, limit = estimate_memory(nx, ny, batch), self.memory_budget()
+        if need <= limit:
+            return
+        fitting = [n for n in range(16, N_MAX + 1, 16) if estimate_memory(n, n, batch) <= limit]
+        smaller = f"a smaller grid (--grid {fitting[-1]} fits)" if fitting else "a smaller grid"
+        per = f" in batches of {batch}" if batch > 1 else ""
+        raise CoatHertzError(
+            f"fft: a {nx} x {ny} grid{per} needs about {need / 2**30:.3g} GiB (estimate), more than "
+            f"the limit max_memory_gb = {limit / 2**30:.3g} GiB; use {smaller}, or a larger "
+            "max_memory_gb (--max-memory) if the machine has the memory")
 
     def fft_workers(self) -> int:
         """FFT threads used (``workers``, or the default for ``n``)."""
@@ -261,7 +295,7 @@ class FFTMethod:
     # Method protocol ------------------------------------------------------------------
     def settings(self) -> Mapping[str, Any]:
         d = asdict(self)
-        for k in ("name", "backend", "workers", "keep_fields"):
+        for k in ("name", "backend", "workers", "keep_fields", "max_memory_gb"):
             d.pop(k)
         return d
 
@@ -298,6 +332,8 @@ class FFTMethod:
             if not self.supports(c):
                 raise CoatHertzError("FFT method needs a point contact (finite Rx and Ry)")
         grids = [grid or self.grid_for(c) for c in cases]
+        for g in {(g.nx, g.ny) for g in grids}:
+            self.check_memory(*g, min(batch, len(cases)))
         adaptive = self.adapt and grid is None
         groups: dict[tuple, list[int]] = {}
         for i, g in enumerate(grids):
@@ -359,7 +395,7 @@ class FFTMethod:
         cells, need, n_fine = _layer_resolution(case, g, self.layer_cells)
         if cells >= need:
             return r
-        if n_fine > min(N_MAX, LAYER_N_MAX, LAYER_N_FACTOR * self.n):
+        if n_fine > N_MAX or estimate_memory(n_fine, n_fine) > self.memory_budget():
             return r  # left to the note
         dx = g.half_widths[0] / (n_fine // 2 - 0.5)
         fine = Grid(n_fine, n_fine, dx, dx * g.dy / g.dx)
@@ -387,13 +423,18 @@ class FFTMethod:
         r.meta["layer_cells"] = cells if math.isfinite(cells) else None
         if cells >= need or r.meta["radius_estimator"] != "gap-fit":
             return
-        stiff = need > LAYER_CELLS_MIN
-        bound = (f"{SUB_CELL_RADIUS_ERROR_STIFF:.2%} (measured at Ec*/Es* = 10)" if stiff
-                 else f"{SUB_CELL_RADIUS_ERROR:.2%} (measured, E 1/4-4)")
+        bound = _sub_cell_bound(case)
+        budget = self.memory_budget()
+        why = ""
+        if n_need > N_MAX or estimate_memory(n_need, n_need) > budget:
+            need_gib = estimate_memory(n_need, n_need) / 2**30
+            why = (f"; refining to n = {n_need} would need about {need_gib:.2g} GiB, beyond "
+                   f"max_memory_gb = {budget / 2**30:.3g}"
+                   + (f" (and n = {n_need} is beyond {N_MAX})" if n_need > N_MAX else ""))
         msg = (f"the coating is {cells:.2g} cells thick (h = {cells * max(grid.dx, grid.dy):.4g} m, cell "
                f"{max(grid.dx, grid.dy):.4g} m), fewer than the {need:g} its edge boundary layer "
-               f"needs: the sub-cell radius can be off by up to {bound} at n = 128; "
-               f"n >= {n_need} resolves it (delta and p0 are not affected)")
+               f"needs: the sub-cell radius can be off by up to {bound}; "
+               f"n >= {n_need} resolves it{why} (delta and p0 are not affected)")
         warnings.warn(msg, UserWarning, stacklevel=3)
         r.meta["accuracy"] = msg
 
@@ -433,7 +474,7 @@ class FFTMethod:
         the cost of the coarse solves in transform pairs of ``grid``.
         """
         coarse = Grid(grid.nx // 2, grid.ny // 2, 2 * grid.dx, 2 * grid.dy)
-        kern = np.stack([case_coefficients(c, coarse, self.interface) for c in cases])
+        kern = np.stack([case_coefficients(c, coarse, c.interface_for(self.interface)) for c in cases])
         g0 = np.stack([initial_gap(c, coarse) for c in cases])
         if min(coarse.nx, coarse.ny) >= NESTED_MIN_N:  # nested in turn
             p0, cost = self._coarse_start(cases, coarse, be)
@@ -478,7 +519,7 @@ class FFTMethod:
                 if new is not None:  # start from the probe, interpolated to the new grid
                     p_c = [prolong_pressure(p_c[0], grid, new)]
                     probe_cost, moved, grid = cost, True, new
-        kern = np.stack([case_coefficients(c, grid, self.interface) for c in cases])
+        kern = np.stack([case_coefficients(c, grid, c.interface_for(self.interface)) for c in cases])
         g0 = np.stack([initial_gap(c, grid) for c in cases])
         W = np.array([c.W for c in cases])
         X, Y = np.meshgrid(grid.x, grid.y)
@@ -516,7 +557,7 @@ class FFTMethod:
             # a by -0.18 % at E = 1, H = 0.01, and did not converge with n)
             hertzian = all(
                 b.coating is None
-                or (b.coating.material == b.material and self.interface == "bonded")
+                or (b.coating.material == b.material and c.interface_for(self.interface) == "bonded")
                 for b in (c.body1, c.body2)
             )
             if not (hertzian and circular):
@@ -561,6 +602,7 @@ class FFTMethod:
                 "radius_fit_failed": fit is None,
                 "r_p0": float(math.hypot(grid.x[i0[1]], grid.y[i0[0]])),
                 "extent": [ext_x, ext_y],
+                "interface": c.interface_for(self.interface),
                 "settings": dict(self.settings()),
             }
             fields = {"pressure": p, "displacement": sol.u[k], "x": grid.x, "y": grid.y}
@@ -578,6 +620,40 @@ class FFTMethod:
                 )
             )
         return results
+
+
+def _sub_cell_bound(case: ContactCase) -> str:
+    """The bound on the radius error of a coating thinner than its cells, as the note quotes it
+    (:data:`SUB_CELL_RADIUS_ERROR`): by the stiffest coating's modulus ratio; unmeasured on a
+    rigid substrate and above :data:`SUB_CELL_MEASURED_E_MAX`."""
+    coated = case.coated_bodies
+    if any(b.material.is_rigid for b in coated):
+        return "an unmeasured amount (not measured on a rigid substrate)"
+    E = max(b.modulus_ratio for b in coated)
+    if E < SUB_CELL_MEASURED_E_MIN:
+        return f"an unmeasured amount (measured for Ec*/Es* >= {SUB_CELL_MEASURED_E_MIN:g}; here {E:.3g})"
+    if E > SUB_CELL_MEASURED_E_MAX:
+        return (f"an unmeasured amount (measured up to Ec*/Es* = {SUB_CELL_MEASURED_E_MAX:g}, where it "
+                f"stayed within {SUB_CELL_RADIUS_ERROR_STIFF:.1%}; here Ec*/Es* = {E:.3g})")
+    if E > STIFF_CONTRAST:
+        return f"{SUB_CELL_RADIUS_ERROR_STIFF:.1%} (1.5 x the largest measured, Ec*/Es* 4-10)"
+    return f"{SUB_CELL_RADIUS_ERROR:.1%} (1.5 x the largest measured, Ec*/Es* 1/4-4)"
+
+
+def estimate_memory(nx: int, ny: int, batch: int = 1) -> float:
+    """Estimated peak memory [bytes] of one solve on an ``nx`` x ``ny`` grid (``batch`` cases
+    stacked): :data:`MEMORY_BASE` plus :data:`MEMORY_PER_CELL` per cell and case."""
+    return MEMORY_BASE + MEMORY_PER_CELL * nx * ny * batch
+
+
+def default_max_memory_gb() -> float:
+    """A quarter of the physical memory, at most 4 GiB: the default memory budget of one FFT
+    solve (an automatic refinement stays within it too)."""
+    try:
+        phys = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES") / 2**30
+    except (ValueError, OSError, AttributeError):
+        phys = 16.0
+    return min(4.0, 0.25 * phys)
 
 
 def _layer_resolution(case: ContactCase, grid: Grid, base: float) -> tuple[float, float, int]:
