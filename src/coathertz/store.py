@@ -72,7 +72,7 @@ def _num(x: float) -> Any:
 
 def _material_dict(m: Material) -> dict:
     d = {"E": _num(m.E), "nu": _num(m.nu)}
-    if getattr(m, "plasticity", None) is not None:  # J2 yield data (issue 11) keys the case too
+    if getattr(m, "plasticity", None) is not None:  # J2 yield data keys the case too
         d["plasticity"] = m.plasticity.key()
     return d
 
@@ -81,6 +81,8 @@ def _body_dict(b: Body) -> dict:
     d: dict[str, Any] = {"material": _material_dict(b.material), "Rx": _num(b.Rx), "Ry": _num(b.Ry)}
     if b.coating is not None:
         d["coating"] = {**_material_dict(b.coating.material), "h": _num(b.coating.h)}
+        if b.coating.interface != "bonded":  # the default leaves the keys of bonded cases as they were
+            d["coating"]["interface"] = b.coating.interface
     return d
 
 
@@ -125,28 +127,39 @@ def _source_files(module: str) -> list[tuple[str, Path]]:
     return [(module, Path(spec.origin))] if spec.origin and spec.origin.endswith(".py") else []
 
 
-@lru_cache(maxsize=1)
-def code_version() -> str:
-    """``<package version>+<hash of the numerical sources>``.
+@lru_cache(maxsize=64)
+def code_version(method: str | None = None) -> str:
+    """``<package version>+<hash of the numerical sources>``: the version key of stored numbers.
 
-    The hash covers the shared case model and every registered method's ``source_packages``
-    (:func:`coathertz.methods.numerical_sources`): a change to a solver or to the case model
-    invalidates stored results; a change to the report, the CLI, the studies, this store or the
-    runner does not. A new method adds its own packages through its metadata, nothing here.
+    With ``method`` (a registered name, or a study's variant such as ``fft-frictionless``), the
+    hash covers the shared case model and validity rule (:data:`coathertz.methods.SHARED_SOURCES`)
+    and that method's own ``source_packages``: editing one method's source invalidates its
+    stored results only, not the other methods'. Without, it covers every registered method
+    (the provenance of a whole report). A change to the report, the CLI, the studies, this store
+    or the runner changes neither. A method without ``source_packages`` is keyed by all sources.
     """
     import coathertz
-    from coathertz.methods import numerical_sources
+    from coathertz.methods import SHARED_SOURCES, method_info, numerical_sources
 
+    if method is None:
+        modules, tag = numerical_sources(), ""
+    else:
+        try:
+            pkgs = method_info(method).source_packages
+        except Exception:  # a broken plug-in: keyed by everything
+            pkgs = ()
+        modules = [*SHARED_SOURCES, *pkgs] if pkgs else numerical_sources()
+        tag = f"{method}-"
     h = hashlib.sha256()
     seen: set[Path] = set()
-    for module in numerical_sources():
+    for module in modules:
         for name, path in _source_files(module):
             if path in seen:
                 continue
             seen.add(path)
             h.update(name.encode())
             h.update(path.read_bytes())
-    return f"{coathertz.__version__}+{h.hexdigest()[:12]}"
+    return f"{coathertz.__version__}+{tag}{h.hexdigest()[:12]}"
 
 
 @dataclass(frozen=True)
@@ -192,7 +205,9 @@ class ResultStore:
     path
         Database file (created with its parent folder); ``":memory:"`` for a throw-away store.
     version
-        Code version used in the keys; default :func:`code_version`.
+        Code version used in the keys of every method (tests); default: each method's own
+        :func:`code_version`, so that a change to one method's source leaves the others'
+        results valid.
     """
 
     def __init__(self, path: str | Path = ":memory:", version: str | None = None) -> None:
@@ -200,7 +215,7 @@ class ResultStore:
         self._lock: _StoreLock | None = None
         if self.path != ":memory:":
             _prepare_folder(Path(self.path))
-        self.version = version or code_version()
+        self.version = version
         try:
             self._db = sqlite3.connect(self.path, timeout=30.0)
         except sqlite3.Error as exc:
@@ -229,8 +244,12 @@ class ResultStore:
         self.close()
 
     # -- access ------------------------------------------------------------------------
+    def version_of(self, method: str) -> str:
+        """The code version that keys ``method``'s results (see :func:`code_version`)."""
+        return self.version or code_version(method)
+
     def key(self, case: ContactCase, method: str, settings: Mapping[str, Any]) -> tuple[str, str, str, str]:
-        return case_key(case), method, settings_key(settings), self.version
+        return case_key(case), method, settings_key(settings), self.version_of(method)
 
     def get(self, case: ContactCase, method: str, settings: Mapping[str, Any]) -> StoredResult | None:
         """The stored result of ``case`` by ``method`` with ``settings`` at this code version."""
@@ -254,7 +273,7 @@ class ResultStore:
             rows = self._query(
                 f"SELECT * FROM results WHERE method=? AND settings_key=? AND code_version=? "
                 f"AND case_key IN ({q})",
-                (method, skey, self.version, *chunk),
+                (method, skey, self.version_of(method), *chunk),
             )
             for r in rows:
                 sr = self._row(r)

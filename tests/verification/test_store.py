@@ -60,3 +60,40 @@ def test_rigid_and_infinite_values_serialise(tmp_path):
         got = st.get(c, "x", {})
     assert got.case["body2"]["material"]["E"] == math.inf and got.result["r"] == math.inf
     assert Material(1e9, 0.3).E_star > 0
+
+
+def test_editing_one_method_leaves_the_others_results_valid(tmp_path, monkeypatch):
+    """Results are keyed by their own method's code version (its source packages plus the shared
+    case model and validity rule): an edit to ``fem/`` invalidates the FE's stored results and
+    keeps the FFT's and the exact method's; an edit to the shared case model invalidates all."""
+    from pathlib import Path
+
+    import coathertz.store as st
+
+    path = tmp_path / "store.sqlite"
+    c = cases(1)[0]
+    with ResultStore(path) as s:
+        for m in ("fft", "axisym", "fem"):
+            s.put(c, m, {"n": 1}, {"delta": 1.0})
+    before = {m: code_version(m) for m in ("fft", "axisym", "fem")}
+    assert len(set(before.values())) == 3 and all(f"+{m}-" in v for m, v in before.items())
+
+    def edited(part: str):
+        real = Path.read_bytes
+
+        def read_bytes(self):
+            data = real(self)
+            return data + b"\n# edited\n" if part in self.as_posix() else data
+
+        return read_bytes
+
+    for part, stale in (("/fem/", {"fem"}), ("/coathertz/case.py", {"fft", "axisym", "fem"})):
+        monkeypatch.setattr(Path, "read_bytes", edited(part))
+        st.code_version.cache_clear()
+        after = {m: code_version(m) for m in before}
+        assert {m for m in before if after[m] != before[m]} == stale, (part, before, after)
+        with ResultStore(path) as s:
+            found = {m for m in before if s.get(c, m, {"n": 1}) is not None}
+        assert found == set(before) - stale, (part, found)
+        monkeypatch.undo()
+        st.code_version.cache_clear()

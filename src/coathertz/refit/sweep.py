@@ -222,33 +222,13 @@ def spot_check(table: Mapping[str, Sequence], method, store, n: int = 12, seed: 
 
 
 #: Shared case-model modules hashed into every method's code version (TEAM.md interface).
-CASE_MODEL = ("coathertz.case", "coathertz.materials", "coathertz.hertz", "coathertz.results",
-              "coathertz.units")
-
-
 def method_code_version(method) -> str:
-    """Version key of a method's numbers: package version + hash of its ``source_packages`` and the
-    shared case model (the store's per-method versioning of the team interface), so that editing
-    the fitting code does not invalidate stored solver results. Methods without
-    ``source_packages`` fall back to :func:`coathertz.store.code_version`."""
-    import importlib
-    from pathlib import Path
-
-    import coathertz
+    """Version key of a method's numbers in the sweep: the store's per-method
+    :func:`coathertz.store.code_version` (its source packages, the shared case model and the
+    validity rule), so that editing the fitting code does not invalidate stored solutions."""
     from coathertz.store import code_version
 
-    pkgs = getattr(type(method), "source_packages", None)
-    if not pkgs:
-        return code_version()
-    h = hashlib.sha256()
-    for name in (*pkgs, *CASE_MODEL):
-        mod = importlib.import_module(name)
-        path = Path(mod.__file__)
-        files = sorted(path.parent.rglob("*.py")) if path.name == "__init__.py" else [path]
-        for f in files:
-            h.update(f.name.encode())
-            h.update(f.read_bytes())
-    return f"{coathertz.__version__}+{method.name}-{h.hexdigest()[:12]}"
+    return code_version(method.name)
 
 
 def design_lines(config: str, nu_c_values: Sequence[float], n: int, which: str = "train",
