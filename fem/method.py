@@ -24,13 +24,12 @@ from __future__ import annotations
 import math
 import os
 import time
-import warnings
 from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
 
-from coathertz import errors
+from coathertz import validity
 from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError, ConvergenceError
 from coathertz.fem.contact import ActiveSet, Penalty, TwoBody
@@ -45,6 +44,7 @@ from coathertz.hertz import hertz_circular
 from coathertz.materials import Body, Material
 from coathertz.methods import require_case
 from coathertz.results import ContactResult
+from coathertz.validity import A_OVER_R_MAX
 
 CONTACTS = {"active-set": lambda beta: ActiveSet(), "penalty": lambda beta: Penalty(beta=beta)}
 SOLVERS = {"direct": DirectSolver, "amg": AMGSolver}
@@ -84,8 +84,6 @@ def axisymmetric_equivalent(case: ContactCase) -> Equivalent | None:
 #: four times more); rounded up, plus the interpreter and libraries (:data:`BASE_BYTES`).
 BYTES_PER_DOF = {"displacement": 10_000, "mixed": 20_000}
 BASE_BYTES = 300e6
-#: Validity of the half-space / small-strain model (team convention): warn above this a / R.
-A_OVER_R_MAX = 0.1
 
 
 def default_max_memory_gb() -> float:
@@ -406,13 +404,6 @@ class FEMMethod:
             "r_p_max": float(r_c[int(np.argmax(p))]) if p.max() > p_axis else 0.0,
         }
         fields = {"r": r_c, "p": p, "gap": sol.gap, "active": sol.active}
-        if a / eq.R > A_OVER_R_MAX:
-            msg = (
-                f"a/R = {a / eq.R:.3g} > {A_OVER_R_MAX:g}: the half-space and small-strain assumptions of the"
-                " model fail; delta, a and p0 are outside its validity"
-            )
-            warnings.warn(msg, getattr(errors, "ModelValidityWarning", UserWarning), stacklevel=2)
-            meta["validity"] = msg
         if self.stresses:
             sfields, smeta = stress_report(model, path.x, a)
             fields.update(sfields)
@@ -420,4 +411,4 @@ class FEMMethod:
         meta["wall_time"] = time.perf_counter() - t0
         meta["wall_time_solve"] = wall
         res = ContactResult("fem", eq.delta_factor * sol.delta, a, p0, case.W, meta=meta, fields=fields)
-        return res, model, path
+        return validity.check(case, res), model, path

@@ -6,8 +6,11 @@ contact small against the bodies (half-space assumption): ``a / R`` small. Above
 physical contact. :func:`check` warns (:class:`~coathertz.errors.ModelValidityWarning`) and
 records the reason in ``result.meta["validity"]``.
 
-Method authors do not call it: the CLI subcommands (``coathertz.cli._common.finish``) and
-the study runner (``coathertz.runner.solve_chunk``) pass every result through it.
+The CLI subcommands (``coathertz.cli._common.finish``) and the study runner
+(``coathertz.runner.solve_chunk``) pass every result through it; a method may call it at the end
+of its own ``solve`` too (the exact method and the FE do, so that a caller of the Python API is
+warned), and a result checked once is not warned about again. No method keeps its own copy of
+the rule.
 """
 
 from __future__ import annotations
@@ -47,6 +50,8 @@ def check(case: ContactCase, result: ContactResult, *, warn: bool = True) -> Con
     if not msgs:
         return result
     text = "; ".join(msgs)
+    if result.meta.get("validity") == text:  # already checked (by the method itself): warn once
+        return result
     if warn:
         warnings.warn(f"{result.method}: {text}", ModelValidityWarning, stacklevel=2)
     return replace(result, meta={**dict(result.meta), "validity": text})

@@ -57,3 +57,25 @@ def test_runner_records_validity_for_every_method(name):
     assert "validity" not in out.get(small, m).result["meta"]
     msgs = [str(w.message) for w in caught if w.category is ModelValidityWarning]
     assert len(msgs) == 1 and msgs[0].startswith("1 result(s)")
+
+
+def test_the_a_over_R_rule_has_one_owner(monkeypatch):
+    """Lowering ``coathertz.validity.A_OVER_R_MAX`` moves every method's flag (the exact method
+    and the FE call the shared check; no method keeps its own copy of the rule), and a result
+    checked by its method is warned about once."""
+    import warnings
+
+    import coathertz.validity as validity
+    from coathertz.axisym import AxisymMethod
+    from coathertz.casefile import load_case
+    from coathertz.fem.method import FEMMethod
+
+    case = load_case("example:b4c_on_steel")  # a/R = 0.0038
+    monkeypatch.setattr(validity, "A_OVER_R_MAX", 1e-3)
+    for method in (AxisymMethod(), FEMMethod(mesh="coarse")):
+        with warnings.catch_warnings(record=True) as rec:
+            warnings.simplefilter("always")
+            res = validity.check(case, method.solve(case))
+        text = res.meta.get("validity", "")
+        assert "a/R = 0.0038" in text and "> 0.001 " in text, text
+        assert sum("a/R" in str(w.message) for w in rec) == 1, [str(w.message) for w in rec]

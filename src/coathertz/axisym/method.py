@@ -12,7 +12,6 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from coathertz import errors
 from coathertz.axisym.kernel import INTERFACES, pair_compliance
 from coathertz.axisym.solver import (
     XiRule,
@@ -28,11 +27,8 @@ from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError
 from coathertz.methods import require_case
 from coathertz.results import ContactResult
+from coathertz.validity import check as check_validity
 
-ModelValidityWarning = getattr(errors, "ModelValidityWarning", UserWarning)
-
-#: a/R above which the half-space (small-strain) model is flagged.
-VALIDITY_A_OVER_R = 0.1
 
 def single_thread_blas() -> contextlib.AbstractContextManager:
     """Pin BLAS/LAPACK to one thread while solving (:func:`coathertz.blas.blas_threads`): the
@@ -198,11 +194,6 @@ class AxisymMethod:
                    "--modes N on the command line, n_modes=N in Python, up to 400)")
             warnings.warn(msg, UserWarning, stacklevel=2)
             meta["accuracy"] = msg
-        if sol.a / R > VALIDITY_A_OVER_R:
-            msg = (f"a/R = {sol.a / R:.3g} > {VALIDITY_A_OVER_R}: the half-space, small-strain "
-                   "model behind every method is outside its range")
-            warnings.warn(msg, ModelValidityWarning, stacklevel=2)
-            meta["validity"] = msg
         fields: dict[str, np.ndarray] = {}
         if self.keep_fields:
             rho_in = 0.5 * (1.0 - np.cos(np.linspace(0.0, math.pi, 121)))
@@ -215,7 +206,8 @@ class AxisymMethod:
                 "u_z": displacement(pc, sol, rho, R, rule, self.decay),
             }
         meta["wall_time"] = time.perf_counter() - t0
-        return ContactResult(self.name, sol.delta, sol.a, p0, case.W, sol.a, sol.a, meta, fields)
+        res = ContactResult(self.name, sol.delta, sol.a, p0, case.W, sol.a, sol.a, meta, fields)
+        return check_validity(case, res)
 
     def solve_many(self, cases: Sequence[ContactCase]) -> list[ContactResult]:
         """Solve cases one after another (Bessel tables are shared through a cache)."""
