@@ -25,7 +25,7 @@ import math
 import os
 import time
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -150,11 +150,11 @@ class FEMMethod:
     """
 
     # method metadata (coathertz.methods)
-    cost = "expensive"
-    marker = "s"
-    label = "axisymmetric FE"
-    reference_rank = 10
-    source_packages = ("coathertz.fem",)
+    cost: ClassVar[str] = "expensive"
+    marker: ClassVar[str] = "s"
+    label: ClassVar[str] = "axisymmetric FE"
+    reference_rank: ClassVar[int] = 10
+    source_packages: ClassVar[tuple[str, ...]] = ("coathertz.fem",)
 
     @classmethod
     def settings_for(cls, resolution: str) -> dict[str, Any]:

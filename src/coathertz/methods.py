@@ -21,8 +21,22 @@ A method is a class registered in the ``coathertz.methods`` entry-point group of
 ``settings_for(resolution)``
     Constructor keyword arguments at a study resolution (``tiny`` | ``quick`` | ``full``).
 
-Nothing else in the suite names a method: studies, the store and the report read this
-metadata through :func:`method_info`, :func:`instances_for` and :func:`numerical_sources`.
+Optional hooks (:data:`OPTIONAL_HOOKS`), used when present:
+
+``solve_many(cases) -> list[ContactResult]``
+    Solve a chunk of cases at once (the runner passes a method's pending cases through it:
+    shared tables, warm starts); results in the order of ``cases``.
+``refined_settings(resolution)`` (classmethod)
+    Constructor settings of a finer discretisation at a resolution: a study re-solves its
+    reference with them to measure the reference's own numerical uncertainty.
+``inline`` (class variable, bool)
+    True for a method that costs microseconds per case: the runner solves its cases in the
+    calling process instead of shipping them to workers.
+
+:func:`method_class` checks every registered class against this contract when it is loaded
+(:func:`validate`) and names what is missing or malformed. Nothing else in the suite names a
+method: studies, the store and the report read the metadata through :func:`method_info`,
+:func:`method_class` and :func:`numerical_sources`.
 """
 
 from __future__ import annotations
@@ -50,7 +64,9 @@ SHARED_SOURCES = ("coathertz.case", "coathertz.materials", "coathertz.hertz", "c
 
 @runtime_checkable
 class Method(Protocol):
-    """A way to compute the contact characteristics of a case (see the module docstring)."""
+    """A way to compute the contact characteristics of a case: the required members (see the
+    module docstring for their meaning and for the optional hooks ``solve_many``,
+    ``refined_settings`` and ``inline``). Metadata are class variables (``ClassVar``)."""
 
     name: ClassVar[str]
     cost: ClassVar[str]
@@ -102,12 +118,52 @@ def method_names() -> list[str]:
     return sorted(_entry_points())
 
 
+#: Required members of a method class: (name, kind) with kind ``method`` (callable), or the
+#: type of a class variable.
+REQUIRED_MEMBERS: tuple[tuple[str, Any], ...] = (
+    ("settings_for", "method"), ("settings", "method"), ("supports", "method"), ("solve", "method"),
+    ("name", str), ("cost", str), ("marker", str), ("label", str), ("reference_rank", int),
+    ("source_packages", tuple),
+)
+#: Optional hooks and what they must be when present (see the module docstring).
+OPTIONAL_HOOKS: tuple[tuple[str, Any], ...] = (
+    ("solve_many", "method"), ("refined_settings", "method"), ("inline", bool),
+)
+
+
+def validate(cls: Any, name: str) -> Any:
+    """``cls`` if it meets the method contract (:data:`REQUIRED_MEMBERS`, :data:`OPTIONAL_HOOKS`,
+    ``cost`` in :data:`COSTS`); else :class:`CoatHertzError` naming the method and every member
+    that is missing or malformed."""
+    problems = []
+    for member, kind in (*REQUIRED_MEMBERS, *OPTIONAL_HOOKS):
+        required = (member, kind) in REQUIRED_MEMBERS
+        if not hasattr(cls, member):
+            if required:
+                problems.append(f"missing {member}" + (" (method)" if kind == "method" else
+                                                       f" (class variable, {kind.__name__})"))
+            continue
+        value = getattr(cls, member)
+        if kind == "method":
+            if not callable(value):
+                problems.append(f"{member} must be callable, got {type(value).__name__}")
+        elif not isinstance(value, kind) or (kind is int and isinstance(value, bool)):
+            problems.append(f"{member} must be a {kind.__name__}, got {value!r}")
+    if not problems and getattr(cls, "cost", None) not in COSTS:
+        problems.append(f"cost must be one of {COSTS}, got {cls.cost!r}")
+    if problems:
+        raise CoatHertzError(f"method {name!r} ({getattr(cls, '__module__', '?')}."
+                             f"{getattr(cls, '__qualname__', cls)!s}) does not meet the method contract "
+                             f"(coathertz.methods): {'; '.join(problems)}")
+    return cls
+
+
 def method_class(name: str) -> type:
-    """The registered class (or factory) of method ``name``."""
+    """The registered class of method ``name``, checked against the contract (:func:`validate`)."""
     eps = _entry_points()
     if name not in eps:
         raise CoatHertzError(f"unknown method {name!r}; choose one of {sorted(eps)}")
-    return eps[name].load()
+    return validate(eps[name].load(), name)
 
 
 def get_method(name: str, **settings: Any) -> Method:

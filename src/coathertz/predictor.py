@@ -6,7 +6,7 @@ import time
 import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, ClassVar
 
 from coathertz.alpha import EQ21_RULE, PAPER_RULE, AlphaRule, Alphas
 from coathertz.case import ContactCase
@@ -45,14 +45,15 @@ class ClosedFormMethod:
         :meth:`supports` is False for it, so studies leave it to the other methods.
     """
 
-    # method metadata (coathertz.methods): class attributes, not dataclass fields
-    inline = True  # microseconds per case: the runner solves it in the calling process
-    cost = "cheap"
-    marker = "-"
-    label = "closed form (eqs 1, 17-19, 21)"
-    reference_rank = 0  # the thing judged, never a reference
-    source_packages = ("coathertz.predictor", "coathertz.extended", "coathertz.alpha", "coathertz.literature",
-                       "coathertz.hertz")
+    # method metadata (coathertz.methods.Method): class variables, not dataclass fields
+    inline: ClassVar[bool] = True  # microseconds per case: the runner solves it in the calling process
+    cost: ClassVar[str] = "cheap"
+    marker: ClassVar[str] = "-"
+    label: ClassVar[str] = "closed form (eqs 1, 17-19, 21)"
+    reference_rank: ClassVar[int] = 0  # the thing judged, never a reference
+    source_packages: ClassVar[tuple[str, ...]] = (
+        "coathertz.predictor", "coathertz.extended", "coathertz.alpha", "coathertz.literature",
+        "coathertz.hertz", "coathertz.refit")
 
     @classmethod
     def settings_for(cls, resolution: str) -> dict[str, Any]:

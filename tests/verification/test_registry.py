@@ -125,3 +125,47 @@ def test_old_protocol_method_sets_still_work():
     from coathertz.verification import _common as old
 
     assert old.StudyCase is StudyCase and old.ALL == "expensive" and old.CF_FFT == "moderate"
+
+
+def test_a_method_missing_a_required_member_is_refused_by_name(monkeypatch):
+    """The registry checks each class against the contract when it loads it and names what is
+    missing or malformed (here ``solve``, and a malformed optional hook)."""
+    import pytest
+
+    from coathertz import methods
+    from coathertz.errors import CoatHertzError
+    from coathertz.fft.method import FFTMethod
+
+    class NoSolve:
+        name, cost, marker, label, reference_rank, source_packages = "bad", "pricey", "x", "bad", 1, ()
+
+        @classmethod
+        def settings_for(cls, resolution):
+            return {}
+
+        def settings(self):
+            return {}
+
+        def supports(self, case):
+            return True
+
+    class BadHook(FFTMethod):
+        inline = "yes"
+
+    class EP:
+        def __init__(self, cls):
+            self.cls = cls
+
+        def load(self):
+            return self.cls
+
+    monkeypatch.setattr(methods, "_entry_points", lambda: {"bad": EP(NoSolve), "hook": EP(BadHook),
+                                                           "fft": EP(FFTMethod)})
+    with pytest.raises(CoatHertzError, match=r"method 'bad' .*missing solve \(method\)"):
+        methods.method_class("bad")
+    with pytest.raises(CoatHertzError, match=r"method 'hook' .*inline must be a bool, got 'yes'"):
+        methods.method_class("hook")
+    assert methods.method_class("fft") is FFTMethod
+    for name in ("closed-form", "fft", "fem", "axisym"):  # the registered ones meet it
+        monkeypatch.undo()
+        methods.method_class(name)

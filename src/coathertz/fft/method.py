@@ -31,7 +31,7 @@ import warnings
 from collections import OrderedDict
 from collections.abc import Mapping, Sequence
 from dataclasses import asdict, dataclass
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -211,12 +211,12 @@ class FFTMethod:
         Return the pressure and displacement arrays in ``ContactResult.fields``.
     """
 
-    # method metadata (coathertz.methods): class attributes, not dataclass fields
-    cost = "moderate"
-    marker = "o"
-    label = "DC-FFT"
-    reference_rank = 20
-    source_packages = ("coathertz.fft",)
+    # method metadata (coathertz.methods.Method): class variables, not dataclass fields
+    cost: ClassVar[str] = "moderate"
+    marker: ClassVar[str] = "o"
+    label: ClassVar[str] = "DC-FFT"
+    reference_rank: ClassVar[int] = 20
+    source_packages: ClassVar[tuple[str, ...]] = ("coathertz.fft",)
 
     @classmethod
     def settings_for(cls, resolution: str) -> dict[str, Any]:
