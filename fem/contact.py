@@ -1,4 +1,5 @@
-"""Frictionless contact of the surface nodes with a rigid paraboloid, under load control.
+"""Frictionless contact of the surface nodes with the indenter (a rigid paraboloid, or an elastic
+sphere meshed as a second body, :class:`TwoBody`), under load control.
 
 The indenter surface after an approach ``delta`` is ``z = -delta + g0(r)``,
 ``g0 = r^2 / (2 R)`` (Hertz's paraboloid, Johnson 1985, eq 4.9). At each candidate node ``i``
@@ -10,7 +11,7 @@ The indenter surface after an approach ``delta`` is ``z = -delta + g0(r)``,
 ``lambda_i`` pushing the body down (``K u = f - B^T lambda``). ``W`` is prescribed and
 ``delta`` comes out.
 
-Condensed solve (default, issue 13 item 4): the stiffness is factorised once per contact
+Condensed solve (default): the stiffness is factorised once per contact
 problem, with the candidates ordered last, and the trailing block of the factors is the
 stiffness condensed on the candidates, ``S`` (:class:`coathertz.fem.solvers.CondensedFactor`);
 its inverse ``G = S^{-1}`` is the candidates' compliance. With ``u0 = K^{-1} f`` (essential values

@@ -291,7 +291,7 @@ def grids(a_ref: float, h: float, spec: MeshSpec, rigid_base: bool = False) -> t
     if h > 0:
         if abs(h - t_f) < 2.0 * s0:
             # The bottom of the fine layer is a soft boundary: near the interface it moves onto it.
-            # Otherwise a sliver element of thickness |h - t_f| is left between the two (issue 9:
+            # Otherwise a sliver element of thickness |h - t_f| is left between the two (found at H = 0.5:
             # h = t_f (1 + 1e-12), i.e. H = 0.5 at a_ref = a0c, made the system exactly singular).
             t_f = h
         s_c = min(s0, spec.edge * h / spec.n_a)  # depth spacing in the coating (edge_refine: radial only)

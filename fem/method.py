@@ -166,7 +166,7 @@ class FEMMethod:
 
     #: One factorisation per contact problem (condensed solve, :mod:`coathertz.fem.contact`) and
     #: the rectangle-table assembly (:mod:`coathertz.fem.affine`); False restores the refactorising
-    #: active-set path and skfem's generic assembly (the path before issue 13 item 4, kept for the
+    #: active-set path and skfem's generic assembly (the path before the condensed solve, kept for the
     #: benchmark's ``--legacy`` rows).
     _reuse_factorisation: bool = True
 

@@ -10,7 +10,7 @@
   The strength-of-connection threshold ``theta = 0.25`` matters on these graded meshes with
   element aspect ratios up to ~1e3: on the default Hertz mesh (28k dofs) CG needs ~130
   iterations with it and ~1000 with pyamg's default ``theta = 0``; ``u_z = const`` alone as
-  near-null space needs ~500. Measured on this machine the direct solver is still ~50x faster
+  near-null space needs ~500. Measured on a 2-core x86-64 machine the direct solver is still ~50x faster
   at these sizes (SuperLU factorisation 0.2 s), so ``direct`` is the default.
 
 Each solver counts its work in ``stats`` (factorisations, solves, CG iterations).

@@ -113,7 +113,7 @@ def _printed(out: str) -> tuple[str, str, str]:
 
 
 def test_readme_three_methods_table_is_what_the_commands_print(capsys):
-    """Issue 12 item 10: the quoted numbers are exactly what the shown commands print."""
+    """the quoted numbers are exactly what the shown commands print."""
     rows = _three_methods()
     assert [r[1].split()[1] for r in rows] == ["predict", "fft", "fem", "axisym"]
     for method, command, *quoted in rows:
@@ -123,14 +123,14 @@ def test_readme_three_methods_table_is_what_the_commands_print(capsys):
 
 
 def test_readme_says_how_to_reach_the_command():
-    """Issue 12 item 9: the install puts coathertz in .venv/bin; the README says so."""
+    """the install puts coathertz in .venv/bin; the README says so."""
     block = dict(_blocks("bash"))["<!-- activate -->"]
     assert "source .venv/bin/activate" in block
     assert ".venv/bin/coathertz" in README.read_text()
 
 
 def test_readme_needs_nothing_outside_the_repository():
-    """Issue 12 item 12: the notes users need are in the repository."""
+    """the notes users need are in the repository."""
     text = README.read_text()
     assert "../shared" not in text
     for link in re.findall(r"\]\(([^)#]+)", text):

@@ -11,6 +11,7 @@ uncertainty; then calls the module's ``analyse``.
 
 from __future__ import annotations
 
+import dataclasses
 import time
 import warnings
 from collections.abc import Mapping, Sequence
@@ -47,13 +48,18 @@ def build_methods(resolution: str, names: Sequence[str] | None = None) -> tuple[
 
 def variants_of(module, methods: Mapping[str, Any], resolution: str) -> tuple[dict[str, Any], list[str]]:
     """Instances of the study's ``VARIANTS`` (name -> (registered method, extra settings)) whose
-    base method is in ``methods``."""
+    base method is in ``methods``: the built base instance with the extra settings replaced
+    (``dataclasses.replace``), so a variant has exactly its base's settings otherwise (the
+    resolution was turned into settings once, by :func:`build_methods`); a base that is not a
+    dataclass is built again from ``resolution``."""
     out, notes = {}, []
     for v, (base, extra) in getattr(module, "VARIANTS", {}).items():
         if base not in methods:
             continue
+        inst = methods[base]
         try:
-            out[v] = get_method(base, **{**settings_for(base, resolution), **extra})
+            out[v] = (dataclasses.replace(inst, **extra) if dataclasses.is_dataclass(inst)
+                      else get_method(base, **{**settings_for(base, resolution), **extra}))
         except Exception as exc:
             notes.append(f"variant {v!r} unavailable: {type(exc).__name__}: {exc}")
     return out, notes

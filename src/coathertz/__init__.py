@@ -1,12 +1,13 @@
 """coathertz: verification suite for the contact mechanics of coated bodies.
 
-Three independent methods are checked against each other and against the
-"extended Hertz" theory of the paper *An extension of the Hertz theory for
-three-dimensional coated bodies*:
+Four independent methods check the "extended Hertz" theory of the paper *An extension of
+the Hertz theory for three-dimensional coated bodies* and each other:
 
-* the closed-form predictor (:mod:`coathertz.hertz`, :mod:`coathertz.extended`),
+* the closed form (:mod:`coathertz.hertz`, :mod:`coathertz.extended`, :mod:`coathertz.refit`),
 * the DC-FFT contact solver (:mod:`coathertz.fft`),
-* the axisymmetric finite-element model (:mod:`coathertz.fem`).
+* the axisymmetric finite-element model with J2 plasticity (:mod:`coathertz.fem`),
+* the exact axisymmetric integral-equation method (:mod:`coathertz.axisym`), the arbiter of
+  circular cases.
 
 All quantities are SI (Pa, m, N) inside the package.
 """

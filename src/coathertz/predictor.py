@@ -17,7 +17,7 @@ from coathertz.methods import require_case
 from coathertz.results import ContactResult
 
 RULES = {r.name: r for r in (PAPER_RULE, EQ21_RULE)}
-#: Every ``alpha_rule`` name: the paper's rules plus ``refit`` (:mod:`coathertz.refit`, issue 10).
+#: Every ``alpha_rule`` name: the paper's rules plus ``refit`` (:mod:`coathertz.refit`).
 RULE_NAMES = (*RULES, "refit")
 
 

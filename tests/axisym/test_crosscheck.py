@@ -1,7 +1,7 @@
 """Cross-checks against the two independent numerical methods (FFT, FE) on delta and p0.
 
 The FFT and FE estimate the contact radius from a grid or mesh (biased by 0.1-1 % in thin
-coatings, issue 8), so the comparison is on delta and p0; the radius differences are printed.
+coatings), so the comparison is on delta and p0; the radius differences are printed.
 The default run checks one case of each configuration against the FFT at n = 128; the ``slow``
 tests check the fig-3 grid corners, the rigid-substrate set (nu_c 0.3/0.4/0.5, H 0.05-3, bonded
 and frictionless), the Section 6 cases and a stiff coating with an off-axis pressure peak against
@@ -19,7 +19,7 @@ from coathertz.materials import RIGID
 
 from .conftest import coated
 
-TOL = 2e-4  # issue 8: delta and p0 within 2e-4 of FFT (n = 256) and FE (fine mesh)
+TOL = 2e-4  # delta and p0 within 2e-4 of FFT (n = 256) and FE (fine mesh)
 
 FIG3 = {f"E={E:g},H={H:g}": (coated(E, H), "bonded") for E in (0.25, 4.0) for H in (0.01, 3.0)}
 RIGID_SET = {
@@ -76,7 +76,7 @@ FE_CASES = [n for n, (_, itf) in ALL.items()
 @pytest.mark.slow
 @pytest.mark.parametrize("name", FE_CASES)
 def test_fem_fine(name):
-    """Every case within 2e-4 since the FE far field and edge fixes (issue 9): the rigid-base
+    """Every case within 2e-4 since the FE far field and edge fixes: the rigid-base
     nu_c = 0.5, H = 3 layer was +3.5e-4 in p0 and the E = 10, H = 0.3 ring +4.9e-4 in delta
     before (FE-side: the FFT agreed with this method to 3e-5)."""
     from coathertz.fem.method import FEMMethod

@@ -2,7 +2,7 @@
 
 For each case at the default mesh it reports the wall time of ``FEMMethod.solve`` (median of
 ``--repeat`` solves), the factorisations and active-set iterations per solve, and ``delta``,
-``a``, ``p0`` to full precision. Cases (issue 13, item 4):
+``a``, ``p0`` to full precision. Cases:
 
 * ``keer_a``: Section 6, Keer et al. case A (two identical coated balls; goal <= 0.4 s);
 * ``thin``: rigid sphere on a thin stiff coating, E = Ec/Es = 4, H = h/a0s = 0.01 (goal <= 1.5 s);
@@ -29,7 +29,7 @@ both alike; it prints the median wall and CPU time of both, their ratios, the fa
 solve and the largest relative difference in ``delta``, ``a``, ``p0`` (the "identical results"
 check). On a machine shared with other jobs run it with ``OPENBLAS_NUM_THREADS=1``: the CPU times
 then measure the work of each version, undisturbed by BLAS threads waiting for a busy core.
-``bench_fem_baseline.json`` holds such a run (issue 13 item 4, second round: ``--baseline 111d63a``).
+``bench_fem_baseline.json`` holds such a run.
 
 Usage: ``python tests/benchmarks/bench_fem.py [--repeat 3] [--legacy] [--baseline REV] [--json out.json]``.
 """

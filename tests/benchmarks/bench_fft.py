@@ -17,7 +17,7 @@ right before each solve, on a machine that may be shared):
    the re-gridding, ``meta["pair_equivalents_total"]``; older versions without that key: the
    final solve's count) over 30 cases of the paper's circular families (the 24 of
    ``tests/fft/test_radius.py``, homogeneous, and five more) at the ``--ns`` grids, with
-   min / median / max per grid (issue 13: <= 40 at 128, <= 60 at 512, flat in n). Counts, not
+   min / median / max per grid. Counts, not
    timings: independent of the machine's load.
 
 ``--save FILE`` writes delta, a, a_num, p0 of the benchmark cases (JSON; with ``--family`` also

@@ -1,4 +1,4 @@
-"""Condensed contact solve (issue 13 item 4): one factorisation per contact problem, the same
+"""Condensed contact solve: one factorisation per contact problem, the same
 numbers as the refactorising active-set path."""
 
 from __future__ import annotations

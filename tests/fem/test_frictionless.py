@@ -1,4 +1,4 @@
-"""Frictionless coating/substrate interface (issue 9 section 2, coverage b): elastic and rigid
+"""Frictionless coating/substrate interface: elastic and rigid
 substrate, against the exact axisymmetric method (quoted, branch ``axisym`` commit 36b7740) and
 the DC-FFT (``FFTMethod(interface="frictionless")``, used here only as a reference)."""
 

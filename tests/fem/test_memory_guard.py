@@ -1,4 +1,4 @@
-"""Memory guard (issue 12 item 1): a mesh too large for the machine is refused before it is built."""
+"""Memory guard: a mesh too large for the machine is refused before it is built."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Mesh generator: no degenerate element for any coating thickness (issue 9, the H = 0.5 crash)."""
+"""Mesh generator: no degenerate element for any coating thickness."""
 
 from __future__ import annotations
 

@@ -1,5 +1,5 @@
 """Contact radius estimator against the exact axisymmetric solution: thin layers bonded to a
-rigid base (issue 9 section 2: -0.16 to -0.3 % at the default mesh before the edge band).
+rigid base.
 
 Estimator (``coathertz.fem.post.contact_radius``): outside a smooth contact edge the gap grows
 like ``(r - a)^{3/2}``, so ``a`` is the root of a straight line fitted to ``g^{2/3}`` on the 2nd

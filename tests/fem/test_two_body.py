@@ -1,4 +1,4 @@
-"""Elastic indenter on a different elastic body: both bodies meshed (issue 9 section 2, coverage a)."""
+"""Elastic indenter on a different elastic body: both bodies meshed."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""The CG iteration allocates no array of grid size (issue 13, item 1).
+"""The CG iteration allocates no array of grid size.
 
 Each iteration reports ``tracemalloc``'s peak since the previous one, relative to the memory
 held at its start: a temporary the size of the grid (even a boolean mask, ``n^2`` bytes) would

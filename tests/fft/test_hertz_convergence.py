@@ -98,7 +98,7 @@ def test_elliptical_paper_geometry(spacing_ratio):
     }
     for k, v in errs.items():
         assert abs(v) < 3e-3, f"{k}: {v:.2e} ({errs})"
-    # semi-axes from the sector fits of the gap (issue 9: within 0.2 %); measured with
+    # semi-axes from the sector fits of the gap; measured with
     # dy = dx/3: r_a +2.2e-4, r_b +5.5e-4; square cells: +8.6e-5, +9.6e-4
     assert max(abs(errs["r_a"]), abs(errs["r_b"])) < 2e-3, errs
     assert r.meta["radius_estimator"] == "gap-fit"

@@ -1,7 +1,6 @@
 """Rigid substrate against the literature: Matthewson eq (10) and Vorovich-Ustinov eq (8).
 
-Nothing is tuned to these solutions; the tests pin what the comparison shows (closing note of
-issue 5 has the tables):
+Nothing is tuned to these solutions; the tests pin what the comparison shows:
 
 * Matthewson's thin incompressible layer (eq 10) is the **bonded** layer: the bonded FFT radius
   approaches it as tau = h/a -> 0 (difference about -0.37 tau), the frictionless one does not.

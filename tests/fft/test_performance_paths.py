@@ -1,4 +1,4 @@
-"""Nested start, direct cell updates and thread defaults change the path, not the answer (issue 13)."""
+"""Nested start, direct cell updates and thread defaults change the path, not the answer."""
 
 from __future__ import annotations
 
@@ -108,7 +108,7 @@ def test_preconditioning_pays_on_half_space_like_and_thin_rigid_base_layers(case
     ids=["fl-E4-H0.1", "rigid-base-nu0.3-H0.5", "E4-H0.01"],
 )
 def test_transform_pairs_within_issue_13_goal_and_flat_in_n(case, interface):
-    """Issue 13: <= 40 transform-pair equivalents per solve at 128^2 and <= 60 at 512^2, flat in
+    """<= 40 transform-pair equivalents per solve at 128^2 and <= 60 at 512^2, flat in
     n (re-gridding included). Measured 36.6 / 40.7 / 39.9, 23.0 / 29.4 / 26.9 and
     25.4 / 32.9 / 41.0 at n = 128 / 256 / 512; over the 30 cases of
     ``bench_fft.py --family``: at most 36.6, 40.7, 42.2."""

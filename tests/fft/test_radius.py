@@ -1,4 +1,4 @@
-"""Contact radius of coated cases against an independent exact solution (issue 9, section 1).
+"""Contact radius of coated cases against an independent exact solution.
 
 References: ``a`` of the exact axisymmetric method (``coathertz.axisym.AxisymMethod`` on branch
 ``axisym`` at commit d1dd03c: Galerkin-Legendre in Hankel space; its results with 8 and 12

@@ -1,4 +1,4 @@
-"""Bad inputs of issue 22 item 3: one clear line on stderr, exit status 2, no traceback; silent
+"""Bad inputs of one clear line on stderr, exit status 2, no traceback; silent
 answers made explicit; output paths checked before anything is computed.
 
 The CLI is called in-process through ``main(argv)`` except where the behaviour belongs to the

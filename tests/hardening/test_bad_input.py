@@ -1,4 +1,4 @@
-"""Every bad input of issue 12 items 5-8 gives one clear line on stderr and exit status 2.
+"""Every bad input in the table below gives one clear line on stderr and exit status 2.
 
 The table (input, message) is the one in the hardening report; the CLI is called in-process
 through ``main(argv)``. Commands that would compute check their output paths first, so the
@@ -26,7 +26,7 @@ TABLE = [
     ("axisym --modes 1", ["axisym", "example:keer_case_a", "--modes", "1"], ["--modes", "[2, 400]", "got 1"]),
     ("directory as case file", ["predict", "dircase"], ["dircase", "is a directory"]),
     ("missing case file", ["predict", "nothere.toml"], ["does not exist", "example:b4c_on_steel"]),
-    # refused before building: the mesh would not fit in memory, and a/R says why (issue 12 items 1, 5)
+    # refused before building: the mesh would not fit in memory, and a/R says why
     ("fem at W = 1e12 N", ["fem", "big_load.toml", "--mesh", "coarse"],
      ["max_memory_gb", "a/R ~ 32", "outside the half-space model"]),
     ("--save-fields into a missing folder",

@@ -1,4 +1,4 @@
-"""Faults (issue 12 items 2-4): workers die with their parent, a damaged store is reported and
+"""Faults: workers die with their parent, a damaged store is reported and
 recovered on request (never silently lost), and two runs never share one store."""
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Case flags given with a case file replace its values, in every subcommand (issue 12 item 6)."""
+"""Case flags given with a case file replace its values, in every subcommand."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Progress of a run on stderr (issue 22 item 4): a line every few seconds when stderr is not a
+"""Progress of a run on stderr: a line every few seconds when stderr is not a
 terminal, and an ETA weighted by each method's measured cost per case."""
 
 from __future__ import annotations

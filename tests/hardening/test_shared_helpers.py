@@ -1,4 +1,4 @@
-"""The shared helpers of issue 12 item 16: one JSON sanitiser, one identical-pair equivalence,
+"""The shared helpers of one JSON sanitiser, one identical-pair equivalence,
 the eq (13) constants in one place."""
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""The shipped data file is reproducible from the shipped sweep (issue 10, "Must show").
+"""The shipped data file is reproducible from the shipped sweep.
 
 * fast: the small fixture sweep (``tests/refit/data/small_sweep.json``, a subset of the shipped
   sweep) refits to exactly the fixture data file, through the ``fit-alpha`` command;
@@ -71,7 +71,7 @@ def test_shipped_file_was_fitted_from_shipped_sweep():
             assert float(err.max()) == pytest.approx(stored, rel=1e-9)
 
 
-#: The goals of issue 10 [%]: circular (elastic and rigid substrate) and elliptical.
+#: The accuracy goals of the refit [%]: circular (elastic and rigid substrate) and elliptical.
 GOAL = {"elastic": 0.3, "rigid": 0.3, "ellipse": 1.0}
 
 

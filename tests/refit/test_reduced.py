@@ -1,4 +1,4 @@
-"""The (lambda, kappa) reduction of the elastic substrate (issue 10, fact 2) and Dundurs' s.
+"""The (lambda, kappa) reduction of the elastic substrate and Dundurs' s.
 
 The layered kernel of eq (13) depends on the materials only through lambda and kappa, so two
 material pairs with the same (E, s) must give the same bars from the exact method; the only

@@ -1,4 +1,4 @@
-"""Issue 12 item 11: the README main job writes only ignored files; the published report is tracked."""
+"""the README main job writes only ignored files; the published report is tracked."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""The method registry drives the studies (issue 8): one contract test over every registered
+"""The method registry drives the studies: one contract test over every registered
 method, and a fifth method registered from the tests alone (no study, store or report edited)."""
 
 from __future__ import annotations
@@ -122,9 +122,6 @@ def test_old_protocol_method_sets_still_work():
     methods, _ = build_methods("tiny", ["closed-form", "fft"])
     todo, absent = plan([none], methods, {})
     assert todo == [] and set(absent["c"]) == {"closed-form", "fft"}
-    from coathertz.verification import _common as old
-
-    assert old.StudyCase is StudyCase and old.ALL == "expensive" and old.CF_FFT == "moderate"
 
 
 def test_a_method_missing_a_required_member_is_refused_by_name(monkeypatch):

@@ -1,4 +1,4 @@
-"""Issue 12 item 14: the HTML report in a real browser (headless Chromium from the system packages).
+"""the HTML report in a real browser (headless Chromium from the system packages).
 
 Every image decodes, nothing overflows the page horizontally, no console error or failed
 resource; a screenshot is kept in the test's tmp_path. Runs where ``chromium`` (or

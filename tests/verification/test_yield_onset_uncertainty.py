@@ -1,4 +1,4 @@
-"""The yield-onset claims carry a mesh uncertainty (issue 9: every figure says how sure it is)."""
+"""The yield-onset claims carry a mesh uncertainty."""
 
 from __future__ import annotations
 

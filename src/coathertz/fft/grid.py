@@ -82,10 +82,6 @@ class Grid:
         return (self.ny, self.nx)
 
     @property
-    def padded_shape(self) -> tuple[int, int]:
-        return (2 * self.ny, 2 * self.nx)
-
-    @property
     def cell_area(self) -> float:
         return self.dx * self.dy
 

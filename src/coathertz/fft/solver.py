@@ -15,7 +15,7 @@ Efficiency
   :class:`Convolver`) are allocated once per solve; the iteration runs in in-place ufuncs
   and transforms with ``out=`` / ``overwrite_x``, so no grid-size array is allocated inside
   it (numpy backend; tested with ``tracemalloc``). Fresh large arrays each iteration cost
-  page faults worth about half a solve at n <= 256 (issue 13);
+  page faults worth about half a solve at n <= 256;
 * ``scipy.fft`` caches its plans; ``workers`` sets its threads (1 by default up to n = 256,
   :func:`default_workers`); the kernel transform is computed once per (grid, bodies);
 * the displacement is updated from the search direction's response
@@ -61,7 +61,7 @@ MAX_DIRECT_CELLS = 16
 
 
 #: Grids with at most this many cells per side use one FFT thread by default: two threads were
-#: slower there (128^2: 44 vs 27 ms per solve, issue 13), they pay off from 512^2 (1.25-1.46x).
+#: slower there (128^2: 44 vs 27 ms per solve, 2-core x86-64), they pay off from 512^2 (1.25-1.46x).
 SINGLE_THREAD_MAX_N = 256
 
 

@@ -1,4 +1,4 @@
-"""Extended Hertz, refitted (issue 10): smooth closed-form alpha fits with validated bounds.
+"""Extended Hertz, refitted: smooth closed-form alpha fits with validated bounds.
 
 Public API
 ----------

@@ -54,10 +54,6 @@ class FitResult:
     residual: np.ndarray  # ln(pred/exact) on the training points
     weights: np.ndarray
 
-    @property
-    def max_err(self) -> float:
-        return float(np.max(np.abs(np.expm1(self.residual)))) * 100
-
 
 def _gauss_newton(Phi: np.ndarray, c: np.ndarray, resid: Callable[[np.ndarray], np.ndarray],
                   sens: Callable[[np.ndarray], np.ndarray], w: np.ndarray, ridge: float,
@@ -156,10 +152,6 @@ def error_stats(err_percent: np.ndarray) -> dict[str, float]:
         return {"n": 0, "max": float("nan"), "p99": float("nan"), "rms": float("nan")}
     return {"n": int(a.size), "max": float(a.max()), "p99": float(np.percentile(a, 99)),
             "rms": float(np.sqrt(np.mean(a * a)))}
-
-
-def summarise(errs: Mapping[str, np.ndarray]) -> dict[str, dict[str, float]]:
-    return {q: error_stats(e) for q, e in errs.items()}
 
 
 def single_alpha_floor(bar_of_alpha: Callable[[np.ndarray], np.ndarray], log_bar_exact: np.ndarray,

@@ -221,7 +221,6 @@ def spot_check(table: Mapping[str, Sequence], method, store, n: int = 12, seed: 
     return out
 
 
-#: Shared case-model modules hashed into every method's code version (TEAM.md interface).
 def method_code_version(method) -> str:
     """Version key of a method's numbers in the sweep: the store's per-method
     :func:`coathertz.store.code_version` (its source packages, the shared case model and the
@@ -229,20 +228,6 @@ def method_code_version(method) -> str:
     from coathertz.store import code_version
 
     return code_version(method.name)
-
-
-def design_lines(config: str, nu_c_values: Sequence[float], n: int, which: str = "train",
-                 offset: float = 0.0) -> list[Point]:
-    """``n`` log-spaced H in the box of ``config`` at each fixed ``nu_c`` (``offset`` in [0, 1)
-    shifts the H grid by that fraction of a step, so validation lines fall between training
-    lines). Used for the nearly incompressible end on a rigid substrate (nu_c -> 0.5), which
-    uniform sampling in nu_c leaves sparse."""
-    lo, hi = BOX[config]["log10_H"]
-    step = (hi - lo) / max(n - 1, 1)
-    logs = lo + step * (np.arange(n) + offset)
-    logs = logs[logs <= hi + 1e-12]
-    return [Point(config, 1.0, round(10 ** float(x), 10), float(nu), 0.3, 1.0, which)
-            for nu in nu_c_values for x in logs]
 
 
 def lobatto(n: int, lo: float, hi: float) -> np.ndarray:
