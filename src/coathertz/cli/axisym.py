@@ -8,6 +8,8 @@ from coathertz.cli._common import add_case_arguments, add_fields_argument
 
 NAME = "axisym"
 HELP = "exact axisymmetric solution of one circular case (delta, a, p0 and its radius, profiles)"
+#: What to lower when the command runs out of memory (named in the error).
+MEMORY_HINT = "fewer Legendre modes (--modes)"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
