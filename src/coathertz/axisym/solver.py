@@ -106,15 +106,17 @@ def bessel_table(n_modes: int, X: float, rule: XiRule) -> tuple[np.ndarray, np.n
 # one, ``G`` being smooth on the scale ``X0``), the derivatives by a 5-point stencil of step
 # ``X0/20``. The cost is then independent of ``h``: the direct rule covers ``[0, X0]`` only.
 
-#: Terms of the finite expansion kept: a_k(l)/X0^k < 4^k/k! < 1e-18 beyond.
-_N_ASYM = 40
+#: Terms of the finite expansion kept: a_k(l)/X0^k < 8^k/k! < 1e-22 beyond.
+_N_ASYM = 56
 
 
 def tail_start(n_modes: int, panel: float) -> float:
-    """``X0``: where the direct xi rule stops and the closed-form tail starts (``>= l^2 / 8`` with
-    ``l = 2N - 2``, so that the finite expansion has terms ``<= 4^k/k!``; at least 512)."""
+    """``X0``: where the direct xi rule stops and the closed-form tail starts (``>= l^2 / 16`` with
+    ``l = 2N - 2``, so that the finite expansion has terms ``<= 8^k/k! <= 420``: at most ~3 digits
+    lost to cancellation; ``l^2/16`` agrees with ``l^2/8`` to 2e-14 at N = 160, ``l^2/32`` does
+    not); at least 512)."""
     l_max = 2 * n_modes - 2
-    X0 = max(l_max * l_max / 8.0, 512.0)
+    X0 = max(l_max * l_max / 16.0, 512.0)
     return panel * math.ceil(X0 / panel)
 
 
@@ -125,52 +127,66 @@ def direct_end(n_modes: int, rule: XiRule) -> float:
 
 
 def _asym_SC(n_modes: int, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Signed ``(-1)^m S_m(x)`` and ``(-1)^m C_m(x)`` (shape ``(n_modes, x.size)``), any real or
-    complex ``x`` with ``|x| >= l^2/8``."""
+    """Signed ``(-1)^m S_m(x)`` and ``(-1)^m C_m(x)`` (shape ``(n_modes, x.size)``), real or
+    complex ``x`` with ``|x| >= l^2/16``."""
     x = np.asarray(x)
     u = 1.0 / x
-    S = np.zeros((n_modes, x.size), dtype=x.dtype)
+    lv = 2.0 * np.arange(n_modes)[:, None]
+    a = np.ones((n_modes, 1))
+    S = np.ones((n_modes, x.size), dtype=x.dtype)
     C = np.zeros_like(S)
-    for m in range(n_modes):
-        lv = 2 * m
-        a = 1.0
-        s = np.ones_like(x)
-        c = np.zeros_like(x)
-        uk = np.ones_like(x)
-        for k in range(min(lv, _N_ASYM)):
-            a = a * (lv + k + 1) * (lv - k) / (2.0 * (k + 1))  # a_{k+1}(l)
-            uk = uk * u
-            kk = k + 1
-            if kk % 2 == 0:
-                s = s + (-1.0) ** (kk // 2) * a * uk
-            else:
-                c = c + (-1.0) ** ((kk - 1) // 2) * a * uk
-        sg = -1.0 if m % 2 else 1.0
-        S[m], C[m] = sg * s, sg * c
-    return S, C
+    uk = np.ones_like(x)
+    for k in range(min(2 * n_modes - 2, _N_ASYM)):
+        a = a * (lv + k + 1) * (lv - k) / (2.0 * (k + 1))  # a_{k+1}(l); 0 from k + 1 > l on
+        uk = uk * u
+        kk = k + 1
+        if kk % 2 == 0:
+            S = S + (-1.0) ** (kk // 2) * a * uk
+        else:
+            C = C + (-1.0) ** ((kk - 1) // 2) * a * uk
+    sg = np.where(np.arange(n_modes) % 2, -1.0, 1.0)[:, None]
+    return sg * S, sg * C
 
 
-@lru_cache(maxsize=16)
-def _geo_nodes(X0: float, X1: float, order: int = 16, ratio: float = 1.5) -> tuple[np.ndarray, np.ndarray]:
-    n = max(1, math.ceil(math.log(X1 / X0) / math.log(ratio)))
-    b = X0 * (X1 / X0) ** (np.arange(n + 1) / n)
-    z, w = npleg.leggauss(order)
-    lo, hi = b[:-1, None], b[1:, None]
-    return (0.5 * (hi - lo) * z + 0.5 * (hi + lo)).ravel(), (0.5 * (hi - lo) * w).ravel()
+_TAIL: dict[tuple[int, float], tuple] = {}
+
+
+def _tail_table(n_modes: int, X0: float, X1: float) -> tuple[np.ndarray, ...]:
+    """Nodes, weights, ``S``, ``C`` on geometric Gauss panels (ratio 1.5, 16 nodes) from ``X0``
+    to at least ``X1``, and ``Z = C - iS`` on the 5-point stencil at ``X0``; cached per
+    ``(N, X0)`` and extended when a thinner layer needs more panels (the nodes do not depend on
+    ``a`` or ``h``)."""
+    key = (n_modes, float(X0))
+    tab = _TAIL.get(key)
+    n_pan = max(1, math.ceil(math.log(max(X1, 2.0 * X0) / X0) / math.log(1.5)))
+    if tab is None or tab[0] < n_pan:
+        n_pan = max(n_pan, 0 if tab is None else 2 * tab[0])
+        b = X0 * 1.5 ** np.arange(n_pan + 1)
+        z, w = npleg.leggauss(16)
+        lo, hi = b[:-1, None], b[1:, None]
+        x = (0.5 * (hi - lo) * z + 0.5 * (hi + lo)).ravel()
+        wx = (0.5 * (hi - lo) * w).ravel()
+        S, C = _asym_SC(n_modes, x)
+        xs = X0 + (X0 / 20.0) * np.arange(-2, 3)
+        S5, C5 = _asym_SC(n_modes, xs)
+        tab = (n_pan, x, wx, S, C, xs, C5 - 1j * S5)
+        _TAIL[key] = tab
+        if len(_TAIL) > 8:
+            _TAIL.pop(next(iter(_TAIL)))
+    n = 16 * max(1, math.ceil(math.log(max(X1, 2.0 * X0) / X0) / math.log(1.5)))
+    _, x, wx, S, C, xs, Z = tab
+    return x[:n], wx[:n], S[:, :n], C[:, :n], xs, Z
 
 
 def tail_matrix(pc: PairCompliance, a: float, n_modes: int, X0: float, X1: float) -> np.ndarray:
-    """``int_X0^X1 M(xi/a) j_{2m} j_{2n} dxi`` (``X1``: where ``M`` has decayed) in closed form."""
+    """``int_X0^inf M(xi/a) j_{2m} j_{2n} dxi`` in closed form (the smooth part on panels up to at
+    least ``X1``, where ``M`` has decayed; the oscillating part by parts)."""
     # non-oscillating part
-    x, w = _geo_nodes(float(X0), float(max(X1, 2.0 * X0)))
-    S, C = _asym_SC(n_modes, x)
+    x, w, S, C, xs, Z = _tail_table(n_modes, X0, X1)
     wm = 0.5 * w * pc.M(x / a) / (x * x)
     A = (S * wm) @ S.T + (C * wm) @ C.T
     # oscillating part: integration by parts at X0
-    s = X0 / 20.0
-    xs = X0 + s * np.arange(-2, 3)
-    S5, C5 = _asym_SC(n_modes, xs)
-    Z = C5 - 1j * S5
+    s = xs[1] - xs[0]
     g = 0.5 * pc.M(xs / a) / (xs * xs)
     G = [g[j] * np.outer(Z[:, j], Z[:, j]) for j in range(5)]
     d0 = G[2]
