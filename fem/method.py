@@ -31,7 +31,7 @@ from typing import Any
 import numpy as np
 
 from coathertz import errors
-from coathertz.case import ContactCase
+from coathertz.case import ContactCase, refuse_stack
 from coathertz.errors import CoatHertzError, ConvergenceError
 from coathertz.fem.contact import ActiveSet, Penalty, TwoBody
 from coathertz.fem.farfield import BoussinesqFarField, FixedFarField
@@ -224,7 +224,7 @@ class FEMMethod:
         return s
 
     def supports(self, case: ContactCase) -> bool:
-        return axisymmetric_equivalent(case) is not None
+        return not case.is_stacked and axisymmetric_equivalent(case) is not None
 
     # ------------------------------------------------------------------------------------
     def _regions(self, lm, body: Body) -> list[Region]:
@@ -314,6 +314,7 @@ class FEMMethod:
 
     def solve_full(self, case: ContactCase) -> tuple[ContactResult, FEModel, LoadPath]:
         """Like :meth:`solve`, also returning the model and the load path (for VTU output)."""
+        refuse_stack(case, "fem")
         eq = axisymmetric_equivalent(case)
         if eq is None:
             raise CoatHertzError(

@@ -61,6 +61,11 @@ class ContactCase:
     theta: float = 0.0
     label: str = ""
 
+    @property
+    def is_stacked(self) -> bool:
+        """A body carries a layer stack (issue 19): only stack-aware methods (axisym) solve it."""
+        return self.body1.is_stacked or self.body2.is_stacked
+
     def __post_init__(self) -> None:
         for name in ("body1", "body2"):
             if not isinstance(getattr(self, name), Body):
@@ -301,3 +306,13 @@ def bars(case: ContactCase, res: Mapping[str, Any]) -> dict[str, float]:
         "r_a_bar": res["r_a"] / n.r_a0,
         "r_b_bar": res["r_b"] / n.r_b0,
     }
+
+
+def refuse_stack(case: ContactCase, method: str) -> None:
+    """Raise one clear line if ``case`` has a layer stack that ``method`` does not model."""
+    for name in ("body1", "body2"):
+        body = getattr(case, name)
+        if body.is_stacked:
+            raise CoatHertzError(
+                f"{method}: {name} has a stack of {len(body.layers)} layers, which {method} does not "
+                "model (one coating at most); use axisym, the exact method for layer stacks")

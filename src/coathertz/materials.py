@@ -217,6 +217,36 @@ class Coating:
         object.__setattr__(self, "h", h)
 
 
+#: How a layer's lower face is joined to what lies below it.
+LAYER_INTERFACES = ("bonded", "frictionless")
+
+
+@dataclass(frozen=True)
+class Layer:
+    """One layer of a stack (issue 19): ``material``, thickness ``h`` [m], ``0 < h < inf``, and
+    how its lower face is joined to what lies below (``bonded`` or ``frictionless``)."""
+
+    material: Material
+    h: float
+    interface: str = "bonded"
+
+    def check(self, where: str) -> None:
+        """Raise one clear line naming ``where`` (e.g. ``body2 layer 2``) for bad data."""
+        if not isinstance(self.material, Material):
+            raise CoatHertzError(f"{where}: material must be a Material, got {self.material!r}")
+        if self.material.is_rigid:
+            raise CoatHertzError(f"{where}: material must be elastic (0 < E < inf), got a rigid one")
+        try:
+            h = float(self.h)
+        except (TypeError, ValueError):
+            raise CoatHertzError(f"{where}: thickness h must be a number > 0 [m], got {self.h!r}") from None
+        if not (0.0 < h < math.inf):
+            raise CoatHertzError(f"{where}: thickness h must satisfy 0 < h < inf [m], got {self.h!r}")
+        if self.interface not in LAYER_INTERFACES:
+            raise CoatHertzError(f"{where}: interface must be one of {LAYER_INTERFACES}, "
+                                 f"got {self.interface!r}")
+
+
 @dataclass(frozen=True)
 class CoatingConstants:
     """Constants of the layered-body FRF, eq (13).
@@ -273,6 +303,9 @@ class Body:
         ``inf`` for a flat surface (half-space). Convex surfaces have positive radii.
     name
         Optional label.
+    layers
+        Optional stack of :class:`Layer` (top first) instead of ``coating`` (issue 19); only the
+        methods that model stacks (``axisym``) accept a body with layers, the others refuse it.
     """
 
     material: Material
@@ -280,6 +313,7 @@ class Body:
     Rx: float = math.inf
     Ry: float = math.inf
     name: str = field(default="", compare=False)
+    layers: tuple[Layer, ...] = ()
 
     def __post_init__(self) -> None:
         if not isinstance(self.material, Material):
@@ -293,6 +327,14 @@ class Body:
             check_positive("radius Ry", self.Ry, allow_inf=True)
         object.__setattr__(self, "Rx", float(self.Rx))
         object.__setattr__(self, "Ry", float(self.Ry))
+        object.__setattr__(self, "layers", tuple(self.layers))
+        if self.layers:
+            if self.coating is not None:
+                raise CoatHertzError("a body takes either a coating or a layer stack, not both")
+            for i, layer in enumerate(self.layers, 1):
+                if not isinstance(layer, Layer):
+                    raise CoatHertzError(f"layer {i} must be a Layer, got {layer!r}")
+                layer.check(f"layer {i}")
 
     # constructors --------------------------------------------------------------
     @classmethod
@@ -311,13 +353,25 @@ class Body:
 
     # derived -------------------------------------------------------------------
     @property
+    def is_stacked(self) -> bool:
+        """Carries a layer stack (``layers``), which only stack-aware methods model."""
+        return bool(self.layers)
+
+    @property
+    def stack(self) -> tuple[Layer, ...]:
+        """The layers, top first: ``layers``, or the single bonded coating, or ``()``."""
+        if self.layers:
+            return self.layers
+        return (Layer(self.coating.material, self.coating.h),) if self.is_coated else ()
+
+    @property
     def is_coated(self) -> bool:
         return self.coating is not None and self.coating.h > 0
 
     @property
     def is_rigid(self) -> bool:
-        """Rigid throughout: rigid material and no (elastic) coating."""
-        return self.material.is_rigid and not self.is_coated
+        """Rigid throughout: rigid material and no (elastic) coating or layers."""
+        return self.material.is_rigid and not self.is_coated and not self.layers
 
     @property
     def compliance_substrate(self) -> float:

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from coathertz.alpha import EQ21_RULE, PAPER_RULE, AlphaRule, Alphas
-from coathertz.case import ContactCase
+from coathertz.case import ContactCase, refuse_stack
 from coathertz.errors import CoatHertzError
 from coathertz.extended import predict
 from coathertz.results import ContactResult
@@ -68,9 +68,10 @@ class ClosedFormMethod:
                                                             self.alphas.p, self.alphas.b]}
 
     def supports(self, case: ContactCase) -> bool:
-        return True
+        return not case.is_stacked  # issue 19: the closed form knows one coating
 
     def solve(self, case: ContactCase) -> ContactResult:
+        refuse_stack(case, "closed form")
         t0 = time.perf_counter()
         bound = None
         with warnings.catch_warnings():

@@ -134,8 +134,25 @@ def layer_factor_frictionless(coating: Material, substrate: Material) -> LayerFa
     return F
 
 
+def stack_factor(body: Body) -> tuple[LayerFactor, float]:
+    """``F`` of a body with a layer stack (:mod:`coathertz.axisym.stack`) as a function of
+    ``t = k h_min`` and ``h_min``, the thinnest layer [m] (it sets the decay of ``M``)."""
+    from coathertz.axisym.stack import StackLayer, stack_layer_factor
+
+    layers = [StackLayer(L.material, L.h, L.interface) for L in body.layers]
+    h_min = min(L.h for L in body.layers)
+
+    def F(t: np.ndarray) -> np.ndarray:
+        t = np.asarray(t, dtype=float)
+        return stack_layer_factor(layers, body.material, t.ravel() / h_min).reshape(t.shape)
+
+    return F, h_min
+
+
 def body_layer_factor(body: Body, interface: str) -> LayerFactor | None:
     """The layer factor of a coated ``body``, ``None`` if it is homogeneous (``F = 1``)."""
+    if body.is_stacked:
+        return stack_factor(body)[0]
     if not body.is_coated:
         return None
     coat = body.coating.material
@@ -147,7 +164,9 @@ def body_layer_factor(body: Body, interface: str) -> LayerFactor | None:
 
 
 def top_compliance(body: Body) -> float:
-    """``(1 - nu^2)/E`` of the material at the body's surface (coating if coated), 0 if rigid."""
+    """``(1 - nu^2)/E`` of the material at the body's surface (coating or top layer), 0 if rigid."""
+    if body.is_stacked:
+        return body.layers[0].material.compliance
     return body.coating.material.compliance if body.is_coated else body.material.compliance
 
 
@@ -195,6 +214,10 @@ def pair_compliance(case: ContactCase, interface: str = "bonded") -> PairComplia
     E_ref = 1.0 / total
     terms = []
     for b, c in zip((case.body1, case.body2), comps, strict=True):
+        if b.is_stacked:
+            F, h = stack_factor(b)
+            terms.append((E_ref * c, F, h))
+            continue
         F = body_layer_factor(b, interface)
         if F is not None:
             terms.append((E_ref * c, F, b.coating.h))

@@ -265,8 +265,8 @@ class FFTMethod:
         return d
 
     def supports(self, case: ContactCase) -> bool:
-        """Any point contact: finite relative radii (a non-conforming contact)."""
-        return math.isfinite(case.Rx) and math.isfinite(case.Ry)
+        """Any point contact: finite relative radii (a non-conforming contact), no layer stack."""
+        return math.isfinite(case.Rx) and math.isfinite(case.Ry) and not case.is_stacked
 
     def grid_for(self, case: ContactCase, axes: tuple[float, float] | None = None) -> Grid:
         ra, rb = estimate_axes(case) if axes is None else axes
@@ -291,6 +291,11 @@ class FFTMethod:
         ``H``); ``batch > 1`` stacks that many cases into one array problem (pays off on a GPU,
         not on 2 CPU cores). Coefficients are cached per (body, grid, interface).
         """
+        for c in cases:  # issue 19: layer stacks are not modelled here
+            if isinstance(c, ContactCase) and c.is_stacked:
+                raise CoatHertzError(f"fft: {c.label or 'the case'} has a layer stack, which fft does not "
+                                     "model yet (one coating at most); use axisym, the exact method for "
+                                     "layer stacks")
         if not (isinstance(batch, int) and batch >= 1):
             raise CoatHertzError(f"batch must be an integer >= 1, got {batch!r}")
         for c in cases:
