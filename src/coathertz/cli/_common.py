@@ -13,7 +13,7 @@ from coathertz.case import ContactCase
 from coathertz.casefile import quantity
 from coathertz.errors import CoatHertzError
 from coathertz.jsonsafe import dumps
-from coathertz.materials import RIGID, Body, Coating, Material
+from coathertz.materials import RIGID, Body, Coating, Layer, Material
 from coathertz.results import ContactResult
 
 
@@ -29,7 +29,9 @@ def add_case_arguments(parser: argparse.ArgumentParser) -> None:
     g.add_argument("--indenter", help="indenter (body1) material: 'rigid' (default) or 'E,nu', "
                                       "e.g. '200 GPa,0.3'")
     g.add_argument("--substrate", help="substrate (body2) material: 'rigid' or 'E,nu', e.g. '200 GPa,0.3'")
-    g.add_argument("--coating", help="coating of body2: 'E,nu,h', e.g. '380 GPa,0.17,40 um'")
+    g.add_argument("--coating", action="append",
+                   help="coating of body2: 'E,nu,h', e.g. '380 GPa,0.17,40 um'; repeat it for a layer "
+                        "stack, top first (then 'E,nu,h[,frictionless]': the layer's lower interface)")
 
 
 _CASE_FLAGS = ("W", "R", "indenter", "substrate", "coating")
@@ -60,6 +62,23 @@ def _coating_flag(text: str) -> Coating:
     if cmat.is_rigid:
         raise CoatHertzError(f"--coating: the coating must be elastic ('E,nu,h'), got {text!r}")
     return Coating(cmat, quantity(parts[2], "length", "--coating: coating thickness h", minimum=">=0"))
+
+
+def _coatings_flag(texts: list[str]) -> tuple[Coating | None, tuple[Layer, ...]]:
+    """One ``--coating``: a coating; several: a layer stack, top first (issue 19)."""
+    if len(texts) == 1:
+        return _coating_flag(texts[0]), ()
+    layers = []
+    for i, text in enumerate(texts, 1):
+        parts = [p.strip() for p in text.split(",")]
+        if len(parts) not in (3, 4):
+            raise CoatHertzError(f"--coating (layer {i}) expects 'E,nu,h[,frictionless]', got {text!r}")
+        mat = _material_flag(",".join(parts[:2]), "--coating", f"layer {i}")
+        h = quantity(parts[2], "length", f"--coating: layer {i} thickness h")
+        layer = Layer(mat, h, parts[3] if len(parts) == 4 else "bonded")
+        layer.check(f"--coating: layer {i}")
+        layers.append(layer)
+    return None, tuple(layers)
 
 
 def _radius_flag(text: str) -> float:
@@ -95,9 +114,10 @@ def case_from_args(args: argparse.Namespace) -> ContactCase:
         if "substrate" in given or "coating" in given:
             mat = _material_flag(given["substrate"], "--substrate", "substrate") if "substrate" in given \
                 else b2.material
-            coat = _coating_flag(given["coating"]) if "coating" in given else b2.coating
-            changes["body2"] = Body(mat, coat, b2.Rx, b2.Ry, b2.name)
-        note = ", ".join(f"--{k} {v}" for k, v in given.items())
+            coat, layers = _coatings_flag(given["coating"]) if "coating" in given else (b2.coating, b2.layers)
+            changes["body2"] = Body(mat, coat, b2.Rx, b2.Ry, b2.name, layers=layers)
+        note = ", ".join(f"--{k} {v}" if k != "coating" else " ".join(f"--coating {c}" for c in v)
+                         for k, v in given.items())
         return case.replace(label=f"{case.label or args.case} with {note}", **changes)
     missing = [f"--{k}" for k in ("W", "R", "substrate") if k not in given]
     if missing:
@@ -106,8 +126,8 @@ def case_from_args(args: argparse.Namespace) -> ContactCase:
     R = _radius_flag(given["R"])
     indenter = _material_flag(given.get("indenter", "rigid"), "--indenter", "indenter")
     substrate = _material_flag(given["substrate"], "--substrate", "substrate")
-    coating = _coating_flag(given["coating"]) if "coating" in given else None
-    return ContactCase(Body(indenter, None, R, R), Body(substrate, coating), W)
+    coating, layers = _coatings_flag(given["coating"]) if "coating" in given else (None, ())
+    return ContactCase(Body(indenter, None, R, R), Body(substrate, coating, layers=layers), W)
 
 
 def list_examples() -> int:
