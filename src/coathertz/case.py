@@ -260,6 +260,11 @@ class ContactCase:
             if b.coating is not None:
                 c = b.coating
                 txt += f" + coating E={c.material.E / 1e9:.4g} GPa nu={c.material.nu:g} h={c.h * 1e6:.4g} um"
+            for j, L in enumerate(b.layers, 1):
+                txt += (f" + layer {j} E={L.material.E / 1e9:.4g} GPa nu={L.material.nu:g} "
+                        f"h={L.h * 1e6:.4g} um")
+                if L.interface == "frictionless":
+                    txt += " (frictionless below)"
             parts.append(txt)
         return "; ".join(parts)
 
@@ -273,7 +278,7 @@ class ContactCase:
         thickness, hence the same radius of each other's image)."""
         b1, b2 = self.body1, self.body2
         return (self.is_circular and not b1.is_rigid and b1.material == b2.material
-                and b1.coating == b2.coating)
+                and b1.coating == b2.coating and b1.layers == b2.layers)
 
     def identical_pair_equivalent(self) -> ContactCase | None:
         """The exactly equivalent single-body problem of two identical bodies, or ``None``.

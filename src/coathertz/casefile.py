@@ -268,4 +268,9 @@ def case_to_toml(case: ContactCase) -> str:
                          f'h = "{_q(c.h, "um", 1e-6)}"{_plastic_toml(c.material)} }}')
         lines.append(f'Rx = "{_q(b.Rx, "mm", 1e-3)}"')
         lines.append(f'Ry = "{_q(b.Ry, "mm", 1e-3)}"')
+        for L in b.layers:  # arrays of tables after the body's keys
+            lines += [f"[[body{i}.layers]]", f'E = "{_q(L.material.E, "GPa", 1e9)}"',
+                      f"nu = {L.material.nu!r}", f'h = "{_q(L.h, "um", 1e-6)}"']
+            if L.interface != "bonded":
+                lines.append(f'interface = "{L.interface}"')
     return "\n".join(lines) + "\n"

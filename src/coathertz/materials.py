@@ -247,6 +247,29 @@ class Layer:
                                  f"got {self.interface!r}")
 
 
+def graded_layers(E_of_z, nu_of_z, h: float, n: int, interface: str = "bonded") -> tuple[Layer, ...]:
+    """A graded coating ``E(z), nu(z)`` (``0 <= z <= h`` from the surface down) as ``n`` equal
+    layers, top first, each with the properties at its mid-depth (midpoint rule: the stack's
+    ``delta``, ``a``, ``p0`` converge like ``1/n^2``; ``tests/multilayer/test_graded.py``).
+    ``interface`` joins the last layer to the substrate; inside the grade all are bonded."""
+    if not (isinstance(n, int) and n >= 1):
+        raise CoatHertzError(f"graded coating: the layer count n must be an integer >= 1, got {n!r}")
+    if not (0.0 < float(h) < math.inf):
+        raise CoatHertzError(f"graded coating: thickness h must satisfy 0 < h < inf [m], got {h!r}")
+    dz = float(h) / n
+    out = []
+    for i in range(n):
+        z = (i + 0.5) * dz
+        try:
+            mat = Material(float(E_of_z(z)), float(nu_of_z(z)))
+        except CoatHertzError as exc:
+            raise CoatHertzError(f"graded coating layer {i + 1} (z = {z:.4g} m): {exc}") from None
+        layer = Layer(mat, dz, interface if i == n - 1 else "bonded")
+        layer.check(f"graded coating layer {i + 1}")
+        out.append(layer)
+    return tuple(out)
+
+
 @dataclass(frozen=True)
 class CoatingConstants:
     """Constants of the layered-body FRF, eq (13).

@@ -51,7 +51,8 @@ def run(args: argparse.Namespace) -> int:
         return 0
     norm = case.normalisers
     m = res.meta
-    print(f"  {args.interface} interface; {m['n_modes']} Legendre modes, {m['n_xi']} xi nodes, "
+    itf = "interfaces of the layer stack" if case.is_stacked else f"{args.interface} interface"
+    print(f"  {itf}; {m['n_modes']} Legendre modes, {m['n_xi']} xi nodes, "
           f"{m['iterations']} load iterations, {m['wall_time'] * 1e3:.1f} ms")
     r_p0 = m["r_p0"]
     where = "on the axis" if r_p0 == 0.0 else f"at r = {r_p0 * 1e6:.4g} um ({r_p0 / res.a:.3f} a)"
