@@ -100,3 +100,15 @@ def test_axisym_stack_table_matches_direct(example):
     assert Ft.ok
     err = np.abs(Ft(t) - Fd(t)).max()
     assert err < 1e-13, f"table vs direct: {err:.2e}"
+
+
+@pytest.mark.parametrize("interface", ["bonded", "frictionless"])
+def test_deep_bottom_layer_acts_as_substrate(interface):
+    """A bottom layer 1000 times the top one is the substrate for k h_top >= 0.02 (its own depth is
+    then >= 20 decay lengths): equals the one-coating closed form on that material."""
+    c, mid = Material(500e9, 0.2), Material(90e9, 0.4)
+    t = np.logspace(np.log10(0.02), 2, 40)
+    F = stack_layer_factor([StackLayer(c, 1.0, interface), StackLayer(mid, 1000.0)], STEEL, t)
+    ref = (layer_factor_bonded if interface == "bonded" else layer_factor_frictionless)(c, mid)(t)
+    err = np.abs(F - ref).max()
+    assert err < TOL, f"deep layer vs substrate: {err:.2e}"
