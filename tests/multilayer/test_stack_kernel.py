@@ -1,4 +1,4 @@
-"""The N-layer kernel definition (``coathertz.axisym.stack``): identities and the one-layer closed
+"""The N-layer kernel definition (``coathertz.stack``): identities and the one-layer closed
 forms of eq (13) and the frictionless/rigid-substrate forms of ``coathertz.axisym.kernel``."""
 
 from __future__ import annotations
@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 
 from coathertz.axisym.kernel import layer_factor_bonded, layer_factor_frictionless
-from coathertz.axisym.stack import StackLayer, stack_layer_factor
 from coathertz.errors import CoatHertzError
 from coathertz.materials import RIGID, Material
+from coathertz.stack import StackLayer, stack_layer_factor
 
 STEEL = Material(200e9, 0.3)
 T = np.logspace(-8, 2.5, 80)  # k h of the top layer

@@ -189,10 +189,10 @@ class _StackTable:
 
 
 def stack_factor(body: Body, table: bool = True) -> tuple[LayerFactor, float]:
-    """``F`` of a body with a layer stack (:mod:`coathertz.axisym.stack`) as a function of
+    """``F`` of a body with a layer stack (:mod:`coathertz.stack`) as a function of
     ``t = k h_min`` and ``h_min``, the thinnest layer [m] (it sets the decay of ``M``);
     ``table``: through :class:`_StackTable` (checked against direct evaluation)."""
-    from coathertz.axisym.stack import StackLayer, stack_layer_factor
+    from coathertz.stack import StackLayer, stack_layer_factor
 
     layers = [StackLayer(L.material, L.h, L.interface) for L in body.layers]
     h_min = min(L.h for L in body.layers)

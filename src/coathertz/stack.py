@@ -21,8 +21,9 @@ top of what lies below are a two-dimensional subspace (columns of a 4x2 matrix `
 at the bottom and the layer acts as a half-space, as it should). At the surface
 ``sigma_zz = -P``, ``sigma_xz = 0`` give ``u_z``. All of it is batched over ``k``.
 
-This is the *definition* of the kernel; :mod:`coathertz.axisym` and the FFT each use and test it
-on their own.
+This is the *definition* of the kernel, shared like the case model (hashed with it in
+:data:`coathertz.methods.SHARED_SOURCES`); :mod:`coathertz.axisym` and the FFT each use and test
+it on their own.
 """
 
 from __future__ import annotations
@@ -61,7 +62,7 @@ def _basis(z: np.ndarray, t: np.ndarray) -> np.ndarray:
     e1 = np.exp(-z)
     e2 = np.exp(z - t)
     s = t - z
-    out = np.empty((4, 4, *np.shape(z)))
+    out = np.empty((4, 4, *np.shape(z)), dtype=np.result_type(z, t, float))
     # e^{-z}
     out[:, 0] = np.stack([e1, -e1, e1, -e1])
     # z e^{-z}
@@ -95,13 +96,15 @@ def _frictionless(B: np.ndarray) -> np.ndarray:
     c = np.stack([B[..., 3, 1], -B[..., 3, 0]], axis=-1)  # B c has sigma_xz = 0
     v = np.einsum("...ij,...j->...i", B, c)
     v = v / np.linalg.norm(v, axis=-1, keepdims=True)
-    e = np.zeros_like(v)
+    e = np.zeros_like(v)  # same dtype (complex k: analytic continuation for Taylor coefficients)
     e[..., 1] = 1.0
     return np.stack([v, e], axis=-1)
 
 
 def stack_layer_factor(layers: Sequence[StackLayer], substrate: Material, k: np.ndarray) -> np.ndarray:
-    """``F(k)`` of ``layers`` (top first) on ``substrate`` (``RIGID`` allowed), ``k`` in 1/m.
+    """``F(k)`` of ``layers`` (top first) on ``substrate`` (``RIGID`` allowed), ``k`` in 1/m
+    (complex ``k`` gives the analytic continuation: the null space is unique, only its basis
+    depends on the SVD).
 
     Raises
     ------
@@ -118,12 +121,13 @@ def stack_layer_factor(layers: Sequence[StackLayer], substrate: Material, k: np.
                                  f"got {L.interface!r}")
         if L.material.is_rigid:
             raise CoatHertzError(f"stack: layer {i} must be elastic (a rigid layer hides the stack)")
-    k = np.atleast_1d(np.asarray(k, dtype=float))
+    k = np.atleast_1d(np.asarray(k))
+    k = k.astype(complex if np.iscomplexobj(k) else float)
     n = k.size
     top = layers[0].material
     G_ref = top.E / (2.0 * (1.0 + top.nu))
     if substrate.is_rigid:
-        B = np.zeros((n, 4, 2))
+        B = np.zeros((n, 4, 2), dtype=k.dtype)
         B[:, 2, 0] = B[:, 3, 1] = 1.0  # u = 0, any traction
         if layers[-1].interface == "frictionless":
             B = _frictionless(B)
@@ -138,7 +142,7 @@ def stack_layer_factor(layers: Sequence[StackLayer], substrate: Material, k: np.
         M0 = _M(np.zeros_like(t), t, L.material, G_ref)
         A = np.concatenate([Mt, -B], axis=-1)  # (n, 4, 6)
         _, _, vh = np.linalg.svd(A)
-        N = np.swapaxes(vh[:, 4:, :], -1, -2)  # (n, 6, 2): null space
+        N = np.swapaxes(vh[:, 4:, :], -1, -2).conj()  # (n, 6, 2): null space (A N = 0)
         B = M0 @ N[:, :4, :]
         B = B / np.linalg.norm(B, axis=-2, keepdims=True)
         if j > 0 and layers[j - 1].interface == "frictionless":
