@@ -11,7 +11,6 @@ from coathertz.axisym import AxisymMethod
 from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError
 from coathertz.fem.method import FEMMethod
-from coathertz.fft.method import FFTMethod
 from coathertz.materials import RIGID, Body, Coating, Layer, Material
 from coathertz.predictor import ClosedFormMethod
 
@@ -86,8 +85,7 @@ def test_poisson_above_half_refused():
         Layer(Material(1e9, 0.51), 1e-6)
 
 
-@pytest.mark.parametrize("method,name", [(ClosedFormMethod(), "closed form"), (FEMMethod(), "fem"),
-                                         (FFTMethod(), "fft")])
+@pytest.mark.parametrize("method,name", [(ClosedFormMethod(), "closed form"), (FEMMethod(), "fem")])
 def test_methods_without_stacks_refuse(method, name):
     c = case(Body(STEEL, layers=(Layer(B4C, 1e-6), Layer(STEEL, 1e-6))))
     assert not method.supports(c)

@@ -265,8 +265,8 @@ class FFTMethod:
         return d
 
     def supports(self, case: ContactCase) -> bool:
-        """Any point contact: finite relative radii (a non-conforming contact), no layer stack."""
-        return math.isfinite(case.Rx) and math.isfinite(case.Ry) and not case.is_stacked
+        """Any point contact: finite relative radii (a non-conforming contact)."""
+        return math.isfinite(case.Rx) and math.isfinite(case.Ry)
 
     def grid_for(self, case: ContactCase, axes: tuple[float, float] | None = None) -> Grid:
         ra, rb = estimate_axes(case) if axes is None else axes
@@ -291,11 +291,6 @@ class FFTMethod:
         ``H``); ``batch > 1`` stacks that many cases into one array problem (pays off on a GPU,
         not on 2 CPU cores). Coefficients are cached per (body, grid, interface).
         """
-        for c in cases:  # issue 19: layer stacks are not modelled here
-            if isinstance(c, ContactCase) and c.is_stacked:
-                raise CoatHertzError(f"fft: {c.label or 'the case'} has a layer stack, which fft does not "
-                                     "model yet (one coating at most); use axisym, the exact method for "
-                                     "layer stacks")
         if not (isinstance(batch, int) and batch >= 1):
             raise CoatHertzError(f"batch must be an integer >= 1, got {batch!r}")
         for c in cases:
@@ -519,8 +514,9 @@ class FFTMethod:
             # a frictionless interface slips even then (p is not Hertzian; the p^2 fit missed
             # a by -0.18 % at E = 1, H = 0.01, and did not converge with n)
             hertzian = all(
-                b.coating is None
-                or (b.coating.material == b.material and self.interface == "bonded")
+                (b.coating is None and not b.is_stacked)
+                or (b.coating is not None and b.coating.material == b.material
+                    and self.interface == "bonded")
                 for b in (c.body1, c.body2)
             )
             if not (hertzian and circular):
