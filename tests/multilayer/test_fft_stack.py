@@ -31,7 +31,7 @@ def test_one_layer_stack_equals_coating():
 def test_two_identical_layers_are_one():
     c = load_example("tin_ti_on_steel")
     top, ti = c.body2.layers
-    split = (Layer(top.material, 1e-6), Layer(top.material, 2e-6), ti)
+    split = (top, Layer(ti.material, 0.2e-6), Layer(ti.material, 0.3e-6))  # the Ti layer in two
     c2 = c.replace(body2=Body(c.body2.material, None, c.body2.Rx, c.body2.Ry, layers=split))
     m = FFTMethod(n=64)
     assert rel(m.solve(c2), m.solve(c)) < 1e-9
@@ -51,3 +51,14 @@ def test_fft_converges_to_exact_method(example):
         assert order > 1.4 and e2 < 5e-5, f"{q}: errors {e1:.2e} (n = 64), {e2:.2e} (128), order {order:.2f}"
     ea = abs(r128.a / ref.a - 1.0)
     assert ea < 1e-3, f"a at n = 128: {ea:.2e}"
+
+
+def test_thin_top_layer_of_a_stack_is_flagged():
+    """A stack's top layer thinner than a cell is flagged like a thin coating (meta and warning)."""
+    c = load_example("tin_ti_on_steel")
+    b = c.body2
+    thin = c.replace(body2=Body(b.material, None, b.Rx, b.Ry,
+                                layers=(Layer(b.layers[0].material, 0.05e-6), b.layers[1])))
+    with pytest.warns(UserWarning, match="cells thick"):
+        r = FFTMethod(n=64).solve(thin)
+    assert r.meta["layer_cells"] < 0.05
