@@ -81,6 +81,9 @@ def _body_dict(b: Body) -> dict:
     d: dict[str, Any] = {"material": _material_dict(b.material), "Rx": _num(b.Rx), "Ry": _num(b.Ry)}
     if b.coating is not None:
         d["coating"] = {**_material_dict(b.coating.material), "h": _num(b.coating.h)}
+    if b.layers:  # issue 19 (only then: the keys of other cases are unchanged)
+        d["layers"] = [{**_material_dict(L.material), "h": _num(L.h), "interface": L.interface}
+                       for L in b.layers]
     return d
 
 

@@ -103,3 +103,16 @@ def test_stack_examples_self_converged(example):
     r = AxisymMethod(keep_fields=False).solve(c)
     ref = AxisymMethod(keep_fields=False, n_modes=2 * r.meta["n_modes"] + 16, order=16, decay=30.0).solve(c)
     assert rel(r, ref) < 1e-9, f"{example}: default vs refined differ by {rel(r, ref):.2e}"
+
+
+def test_store_key_tells_stacks_apart():
+    """The result store's case key includes the layers (else a stack would share the cached result
+    of its bare substrate); a body without layers keeps its key."""
+    from coathertz.store import case_dict, case_key
+
+    bare = case(Body(STEEL))
+    s1 = case(Body(STEEL, layers=(Layer(B4C, 1e-6),)))
+    s2 = case(Body(STEEL, layers=(Layer(B4C, 1e-6, "frictionless"),)))
+    s3 = case(Body(STEEL, layers=(Layer(B4C, 2e-6),)))
+    assert len({case_key(c) for c in (bare, s1, s2, s3)}) == 4
+    assert "layers" not in case_dict(bare)["body2"]
