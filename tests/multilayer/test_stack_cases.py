@@ -116,3 +116,13 @@ def test_store_key_tells_stacks_apart():
     s3 = case(Body(STEEL, layers=(Layer(B4C, 2e-6),)))
     assert len({case_key(c) for c in (bare, s1, s2, s3)}) == 4
     assert "layers" not in case_dict(bare)["body2"]
+
+
+def test_extended_predict_and_fe_model_refuse_stacks():
+    from coathertz.extended import predict
+    from coathertz.fem.method import axisymmetric_equivalent
+
+    c = case(Body(STEEL, layers=(Layer(B4C, 1e-6), Layer(STEEL, 1e-6))))
+    with pytest.raises(CoatHertzError, match=r"^closed form: body2 has a stack of 2 layers"):
+        predict(c)
+    assert axisymmetric_equivalent(c) is None

@@ -110,7 +110,7 @@ def case_from_args(args: argparse.Namespace) -> ContactCase:
             mat = _material_flag(given["indenter"], "--indenter", "indenter") if "indenter" in given \
                 else b1.material
             changes["body1"] = Body(mat, b1.coating, b1.Rx if R is None else R, b1.Ry if R is None else R,
-                                    b1.name)
+                                    b1.name, layers=b1.layers)
         if "substrate" in given or "coating" in given:
             mat = _material_flag(given["substrate"], "--substrate", "substrate") if "substrate" in given \
                 else b2.material
