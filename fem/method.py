@@ -30,7 +30,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from coathertz import validity
-from coathertz.case import ContactCase
+from coathertz.case import ContactCase, refuse_stack
 from coathertz.errors import CoatHertzError, ConvergenceError
 from coathertz.fem.contact import ActiveSet, Penalty, TwoBody
 from coathertz.fem.farfield import BoussinesqFarField, FixedFarField
@@ -63,7 +63,7 @@ class Equivalent:
 
 def axisymmetric_equivalent(case: ContactCase) -> Equivalent | None:
     """The model problem that ``case`` reduces to, or ``None`` (see module docstring)."""
-    if not case.is_circular:
+    if not case.is_circular or case.is_stacked:  # issue 19: no layer stacks in the FE model
         return None
     b1, b2 = case.body1, case.body2
     if b1.is_rigid and not b2.is_rigid:
@@ -223,7 +223,7 @@ class FEMMethod:
         return s
 
     def supports(self, case: ContactCase) -> bool:
-        return axisymmetric_equivalent(case) is not None
+        return not case.is_stacked and axisymmetric_equivalent(case) is not None
 
     # ------------------------------------------------------------------------------------
     def _regions(self, lm, body: Body) -> list[Region]:
@@ -313,6 +313,7 @@ class FEMMethod:
 
     def solve_full(self, case: ContactCase) -> tuple[ContactResult, FEModel, LoadPath]:
         """Like :meth:`solve`, also returning the model and the load path (for VTU output)."""
+        refuse_stack(case, "fem")
         eq = axisymmetric_equivalent(case)
         if eq is None:
             raise CoatHertzError(

@@ -61,6 +61,11 @@ class ContactCase:
     theta: float = 0.0
     label: str = ""
 
+    @property
+    def is_stacked(self) -> bool:
+        """A body carries a layer stack (issue 19): only stack-aware methods (axisym) solve it."""
+        return self.body1.is_stacked or self.body2.is_stacked
+
     def __post_init__(self) -> None:
         for name in ("body1", "body2"):
             if not isinstance(getattr(self, name), Body):
@@ -272,6 +277,11 @@ class ContactCase:
                 txt += f" + coating E={c.material.E / 1e9:.4g} GPa nu={c.material.nu:g} h={c.h * 1e6:.4g} um"
                 if c.interface != "bonded":
                     txt += f" ({c.interface} interface)"
+            for j, L in enumerate(b.layers, 1):
+                txt += (f" + layer {j} E={L.material.E / 1e9:.4g} GPa nu={L.material.nu:g} "
+                        f"h={L.h * 1e6:.4g} um")
+                if L.interface == "frictionless":
+                    txt += " (frictionless below)"
             parts.append(txt)
         return "; ".join(parts)
 
@@ -285,7 +295,7 @@ class ContactCase:
         thickness, hence the same radius of each other's image)."""
         b1, b2 = self.body1, self.body2
         return (self.is_circular and not b1.is_rigid and b1.material == b2.material
-                and b1.coating == b2.coating)
+                and b1.coating == b2.coating and b1.layers == b2.layers)
 
     def identical_pair_equivalent(self) -> ContactCase | None:
         """The exactly equivalent single-body problem of two identical bodies, or ``None``.
@@ -318,3 +328,13 @@ def bars(case: ContactCase, res: Mapping[str, Any]) -> dict[str, float]:
         "r_a_bar": res["r_a"] / n.r_a0,
         "r_b_bar": res["r_b"] / n.r_b0,
     }
+
+
+def refuse_stack(case: ContactCase, method: str) -> None:
+    """Raise one clear line if ``case`` has a layer stack that ``method`` does not model."""
+    for name in ("body1", "body2"):
+        body = getattr(case, name)
+        if body.is_stacked:
+            raise CoatHertzError(
+                f"{method}: {name} has a stack of {len(body.layers)} layers, which {method} does not "
+                "model (one coating at most); use axisym, the exact method for layer stacks")

@@ -33,10 +33,10 @@ from typing import Any
 
 from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError
-from coathertz.materials import INTERFACES, RIGID, Body, Coating, Material, Plasticity
+from coathertz.materials import INTERFACES, RIGID, Body, Coating, Layer, Material, Plasticity
 from coathertz.units import parse_quantity
 
-_BODY_KEYS = {"material", "coating", "R", "Rx", "Ry", "name"}
+_BODY_KEYS = {"material", "coating", "layers", "R", "Rx", "Ry", "name"}
 _TOP_KEYS = {"label", "W", "theta", "interface", "body1", "body2"}
 #: Largest |theta| a case file accepts [rad]: one full turn either way (eq 3b is pi-periodic).
 THETA_MAX = 2.0 * math.pi
@@ -144,6 +144,9 @@ def _body(spec: Any, where: str, interface: str = "bonded") -> Body:
             coating = Coating(cmat, h, interface)
         except CoatHertzError as exc:
             raise CoatHertzError(f"[{where}] coating: {exc}") from None
+    layers = _layers(spec["layers"], where) if "layers" in spec else ()
+    if layers and coating is not None:
+        raise CoatHertzError(f"[{where}]: give either a coating or [[{where}.layers]], not both")
     if "R" in spec and ("Rx" in spec or "Ry" in spec):
         raise CoatHertzError(f"[{where}]: give either R or Rx/Ry, not both")
     if "R" in spec:
@@ -152,9 +155,37 @@ def _body(spec: Any, where: str, interface: str = "bonded") -> Body:
         Rx = quantity(spec.get("Rx", math.inf), "length", f"[{where}] radius Rx", allow_inf=True)
         Ry = quantity(spec.get("Ry", math.inf), "length", f"[{where}] radius Ry", allow_inf=True)
     try:
-        return Body(material, coating, Rx, Ry, name=str(spec.get("name", "")))
+        return Body(material, coating, Rx, Ry, name=str(spec.get("name", "")), layers=layers)
     except CoatHertzError as exc:
         raise CoatHertzError(f"[{where}]: {exc}") from None
+
+
+_LAYER_KEYS = {"E", "nu", "h", "interface", "name", *_PLASTIC_KEYS}
+
+
+def _layers(spec: Any, where: str) -> tuple[Layer, ...]:
+    """``[[bodyN.layers]]`` tables (top first), each ``E, nu, h`` and optionally ``interface``
+    (``bonded``, the default, or ``frictionless``: how the layer's lower face is joined)."""
+    if not isinstance(spec, list) or not all(isinstance(t, dict) for t in spec):
+        raise CoatHertzError(f"[{where}] layers must be [[{where}.layers]] tables, got {spec!r}")
+    if not spec:
+        raise CoatHertzError(f"[{where}] layers: the stack is empty (give at least one "
+                             f"[[{where}.layers]] table with E, nu and h)")
+    out = []
+    for i, t in enumerate(spec, 1):
+        w = f"[{where}] layer {i}"
+        unknown = set(t) - _LAYER_KEYS
+        if unknown:
+            raise CoatHertzError(f"{w}: unknown keys {sorted(unknown)}; allowed "
+                                 f"{sorted({'E', 'nu', 'h', 'interface', 'name'})}")
+        if "h" not in t:
+            raise CoatHertzError(f"{w}: missing h (the layer thickness)")
+        mat = _material({k: v for k, v in t.items() if k not in ("h", "interface")}, f"{where}.layer {i}")
+        h = quantity(t["h"], "length", f"{w} thickness h")
+        layer = Layer(mat, h, str(t.get("interface", "bonded")))
+        layer.check(w)
+        out.append(layer)
+    return tuple(out)
 
 
 def case_from_dict(data: dict) -> ContactCase:
@@ -255,4 +286,9 @@ def case_to_toml(case: ContactCase) -> str:
                          f'h = "{_q(c.h, "um", 1e-6)}"{iface}{_plastic_toml(c.material)} }}')
         lines.append(f'Rx = "{_q(b.Rx, "mm", 1e-3)}"')
         lines.append(f'Ry = "{_q(b.Ry, "mm", 1e-3)}"')
+        for L in b.layers:  # arrays of tables after the body's keys
+            lines += [f"[[body{i}.layers]]", f'E = "{_q(L.material.E, "GPa", 1e9)}"',
+                      f"nu = {L.material.nu!r}", f'h = "{_q(L.h, "um", 1e-6)}"']
+            if L.interface != "bonded":
+                lines.append(f'interface = "{L.interface}"')
     return "\n".join(lines) + "\n"

@@ -36,7 +36,7 @@ from coathertz.alpha import (
     Alphas,
     alpha_rigid,
 )
-from coathertz.case import ContactCase
+from coathertz.case import ContactCase, refuse_stack
 from coathertz.errors import CoatHertzError, FittedRangeWarning
 from coathertz.materials import Body, coating_constants, lam_kappa, lam_kappa_rigid
 
@@ -203,6 +203,7 @@ def predict(
     warn
         Issue :class:`FittedRangeWarning` outside the fitted ranges.
     """
+    refuse_stack(case, "closed form")  # eqs (17)-(19) know one coating
     refuse_frictionless(case)
     circular = case.is_circular
     if rule is None:

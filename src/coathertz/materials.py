@@ -230,6 +230,59 @@ class Coating:
         object.__setattr__(self, "h", h)
 
 
+#: How a layer's lower face is joined to what lies below it.
+LAYER_INTERFACES = INTERFACES
+
+
+@dataclass(frozen=True)
+class Layer:
+    """One layer of a stack (issue 19): ``material``, thickness ``h`` [m], ``0 < h < inf``, and
+    how its lower face is joined to what lies below (``bonded`` or ``frictionless``)."""
+
+    material: Material
+    h: float
+    interface: str = "bonded"
+
+    def check(self, where: str) -> None:
+        """Raise one clear line naming ``where`` (e.g. ``body2 layer 2``) for bad data."""
+        if not isinstance(self.material, Material):
+            raise CoatHertzError(f"{where}: material must be a Material, got {self.material!r}")
+        if self.material.is_rigid:
+            raise CoatHertzError(f"{where}: material must be elastic (0 < E < inf), got a rigid one")
+        try:
+            h = float(self.h)
+        except (TypeError, ValueError):
+            raise CoatHertzError(f"{where}: thickness h must be a number > 0 [m], got {self.h!r}") from None
+        if not (0.0 < h < math.inf):
+            raise CoatHertzError(f"{where}: thickness h must satisfy 0 < h < inf [m], got {self.h!r}")
+        if self.interface not in LAYER_INTERFACES:
+            raise CoatHertzError(f"{where}: interface must be one of {LAYER_INTERFACES}, "
+                                 f"got {self.interface!r}")
+
+
+def graded_layers(E_of_z, nu_of_z, h: float, n: int, interface: str = "bonded") -> tuple[Layer, ...]:
+    """A graded coating ``E(z), nu(z)`` (``0 <= z <= h`` from the surface down) as ``n`` equal
+    layers, top first, each with the properties at its mid-depth (midpoint rule: the stack's
+    ``delta``, ``a``, ``p0`` converge like ``1/n^2``; ``tests/multilayer/test_graded.py``).
+    ``interface`` joins the last layer to the substrate; inside the grade all are bonded."""
+    if not (isinstance(n, int) and n >= 1):
+        raise CoatHertzError(f"graded coating: the layer count n must be an integer >= 1, got {n!r}")
+    if not (0.0 < float(h) < math.inf):
+        raise CoatHertzError(f"graded coating: thickness h must satisfy 0 < h < inf [m], got {h!r}")
+    dz = float(h) / n
+    out = []
+    for i in range(n):
+        z = (i + 0.5) * dz
+        try:
+            mat = Material(float(E_of_z(z)), float(nu_of_z(z)))
+        except CoatHertzError as exc:
+            raise CoatHertzError(f"graded coating layer {i + 1} (z = {z:.4g} m): {exc}") from None
+        layer = Layer(mat, dz, interface if i == n - 1 else "bonded")
+        layer.check(f"graded coating layer {i + 1}")
+        out.append(layer)
+    return tuple(out)
+
+
 @dataclass(frozen=True)
 class CoatingConstants:
     """Constants of the layered-body FRF, eq (13).
@@ -286,6 +339,9 @@ class Body:
         ``inf`` for a flat surface (half-space). Convex surfaces have positive radii.
     name
         Optional label.
+    layers
+        Optional stack of :class:`Layer` (top first) instead of ``coating`` (issue 19); only the
+        methods that model stacks (``axisym``) accept a body with layers, the others refuse it.
     """
 
     material: Material
@@ -293,6 +349,7 @@ class Body:
     Rx: float = math.inf
     Ry: float = math.inf
     name: str = field(default="", compare=False)
+    layers: tuple[Layer, ...] = ()
 
     def __post_init__(self) -> None:
         if not isinstance(self.material, Material):
@@ -306,6 +363,14 @@ class Body:
             check_positive("radius Ry", self.Ry, allow_inf=True)
         object.__setattr__(self, "Rx", float(self.Rx))
         object.__setattr__(self, "Ry", float(self.Ry))
+        object.__setattr__(self, "layers", tuple(self.layers))
+        if self.layers:
+            if self.coating is not None:
+                raise CoatHertzError("a body takes either a coating or a layer stack, not both")
+            for i, layer in enumerate(self.layers, 1):
+                if not isinstance(layer, Layer):
+                    raise CoatHertzError(f"layer {i} must be a Layer, got {layer!r}")
+                layer.check(f"layer {i}")
 
     # constructors --------------------------------------------------------------
     @classmethod
@@ -324,13 +389,27 @@ class Body:
 
     # derived -------------------------------------------------------------------
     @property
+    def is_stacked(self) -> bool:
+        """Carries a layer stack (``layers``), which only stack-aware methods model."""
+        return bool(self.layers)
+
+    @property
+    def stack(self) -> tuple[Layer, ...]:
+        """The layers, top first: ``layers``, or the single coating (with its interface), or ``()``."""
+        if self.layers:
+            return self.layers
+        if not self.is_coated:
+            return ()
+        return (Layer(self.coating.material, self.coating.h, self.coating.interface),)
+
+    @property
     def is_coated(self) -> bool:
         return self.coating is not None and self.coating.h > 0
 
     @property
     def is_rigid(self) -> bool:
-        """Rigid throughout: rigid material and no (elastic) coating."""
-        return self.material.is_rigid and not self.is_coated
+        """Rigid throughout: rigid material and no (elastic) coating or layers."""
+        return self.material.is_rigid and not self.is_coated and not self.layers
 
     @property
     def compliance_substrate(self) -> float:

@@ -58,8 +58,8 @@ COSTS = ("cheap", "moderate", "expensive")
 #: Study resolutions.
 RESOLUTIONS = ("tiny", "quick", "full")
 #: Modules every method's numbers depend on (the shared case model): always hashed.
-SHARED_SOURCES = ("coathertz.case", "coathertz.materials", "coathertz.hertz", "coathertz.results",
-                  "coathertz.validity", "coathertz.units")
+SHARED_SOURCES = ("coathertz.case", "coathertz.materials", "coathertz.stack", "coathertz.hertz",
+                  "coathertz.results", "coathertz.validity", "coathertz.units")
 
 
 @runtime_checkable

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 from typing import Any, ClassVar
 
 from coathertz.alpha import EQ21_RULE, PAPER_RULE, AlphaRule, Alphas
-from coathertz.case import ContactCase
+from coathertz.case import ContactCase, refuse_stack
 from coathertz.errors import CoatHertzError
 from coathertz.extended import predict, refuse_frictionless
 from coathertz.materials import INTERFACES
@@ -79,10 +79,13 @@ class ClosedFormMethod:
                                                             self.alphas.p, self.alphas.b]}
 
     def supports(self, case: ContactCase) -> bool:
+        if case.is_stacked:  # eqs (17)-(19) know one coating
+            return False
         return not (case.is_coated and case.interface_for(self.interface) == "frictionless")
 
     def solve(self, case: ContactCase) -> ContactResult:
         require_case(case, self.name)
+        refuse_stack(case, "closed form")
         refuse_frictionless(case, self.interface)
         t0 = time.perf_counter()
         bound = None

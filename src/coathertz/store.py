@@ -83,6 +83,9 @@ def _body_dict(b: Body) -> dict:
         d["coating"] = {**_material_dict(b.coating.material), "h": _num(b.coating.h)}
         if b.coating.interface != "bonded":  # the default leaves the keys of bonded cases as they were
             d["coating"]["interface"] = b.coating.interface
+    if b.layers:  # only then: the keys of other cases are unchanged
+        d["layers"] = [{**_material_dict(L.material), "h": _num(L.h), "interface": L.interface}
+                       for L in b.layers]
     return d
 
 

@@ -53,3 +53,25 @@ def test_bad_input_errors(capsys):
 def test_list_examples(capsys):
     assert main(["axisym", "--list-examples"]) == 0
     assert "example:b4c_on_steel" in capsys.readouterr().out
+
+
+def test_extreme_thin_coating_and_load_solve(capsys):
+    """A 1e-15 m coating under 1e30 N (h/a ~ 1e-30) is solved with bounded memory (it used to end
+    in 'out of memory'); the answer is the substrate's Hertz solution (ratios 1.0000000)."""
+    assert main(["axisym", "example:b4c_on_steel", "--coating", "380 GPa,0.17,1e-15 m",
+                 "--W", "1e30 N", "--modes", "32"]) == 0
+    text = capsys.readouterr().out
+    assert text.count("1.0000000") == 3, text
+
+
+def test_out_of_memory_names_axisym_flag(monkeypatch, capsys):
+    """Out of memory: one line naming axisym's own resolution flag (--modes), not --mesh/--grid."""
+    from coathertz.axisym import AxisymMethod
+
+    def boom(self, case):
+        raise MemoryError
+
+    monkeypatch.setattr(AxisymMethod, "solve", boom)
+    assert main(["axisym", "example:b4c_on_steel"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err == "coathertz axisym: error: out of memory; use fewer Legendre modes (--modes)", err

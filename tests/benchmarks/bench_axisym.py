@@ -8,12 +8,15 @@ Reports, in one run:
    ``coathertz.verification``), on ``--workers`` processes (default 2; goal: <= 30 s);
 3. the accuracy of the default settings against a reference with ~2x the modes and denser
    quadrature (n_modes = 2 x default + 16, 20 nodes per panel, decay 30) on 25 E x 7 H
-   (goal: <= 1e-6 in delta, a, p0).
+   (goal: <= 1e-6 in delta, a, p0);
+4. thin layers (issue 19): the B4C example (example:b4c_on_steel) with h from H = 1e-5 (1 nm is
+   H ~ 2.4e-5) to 10: warm time per case, traced peak memory of a cold solve (caches cleared) and
+   the difference of delta, a, p0 to a solve with twice the modes (goal: <= 50 ms, <= 200 MB).
 
 BLAS is pinned to one thread per process (the Galerkin systems are at most ~100 x 100).
 
-Usage: ``python tests/benchmarks/bench_axisym.py [--workers 2] [--quick]`` (``--quick``: 5 of
-the 25 modulus ratios, grid time scaled to 25).
+Usage: ``python tests/benchmarks/bench_axisym.py [--workers 2] [--quick] [--thin]`` (``--quick``:
+5 of the 25 modulus ratios, grid time scaled to 25; ``--thin``: item 4 only).
 """
 
 from __future__ import annotations
@@ -26,11 +29,15 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 import argparse
 import platform
 import time
+import tracemalloc
+import warnings
 from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
 
 from coathertz.axisym import AxisymMethod
+from coathertz.axisym import solver as axisym_solver
+from coathertz.casefile import load_case
 from coathertz.verification import elastic_case, fig3_ratios, h_grid
 
 QS = ("delta", "a", "p0")
@@ -74,11 +81,42 @@ def accuracy(ratios: list[float]) -> dict[str, float]:
     return worst
 
 
+def thin_layers() -> None:
+    base = load_case("example:b4c_on_steel")
+    a0 = base.a0s
+    for H in (1e-5, 1e-4, 1e-3, 1e-2, 0.1, 1.0, 10.0):
+        case = base.with_thickness(H * a0)
+        m = AxisymMethod(keep_fields=False)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            axisym_solver._TABLES.clear()
+            axisym_solver._TAIL.clear()
+            tracemalloc.start()
+            r = m.solve(case)
+            peak = tracemalloc.get_traced_memory()[1] / 2**20
+            tracemalloc.stop()
+            t = []
+            for _ in range(5):
+                t0 = time.perf_counter()
+                m.solve(case)
+                t.append(time.perf_counter() - t0)
+            ref = AxisymMethod(n_modes=2 * r.meta["n_modes"], keep_fields=False).solve(case)
+        err = ", ".join(f"{q} {abs(getattr(r, q) / getattr(ref, q) - 1.0):.1e}" for q in QS)
+        print(f"  H = {H:7.1e} (h = {H * a0:.3g} m): N = {r.meta['n_modes']:3d}, "
+              f"{r.meta['n_xi']:6d} xi nodes, warm {np.median(t) * 1e3:6.1f} ms, "
+              f"cold peak {peak:6.1f} MiB; vs 2N: {err}")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--thin", action="store_true", help="only the thin-layer table (item 4)")
     args = ap.parse_args()
+    if args.thin:
+        print("thin layers (B4C example, h = H a0s):")
+        thin_layers()
+        return
     ratios = fig3_ratios()
     if args.quick:
         ratios = ratios[::6]
@@ -107,6 +145,8 @@ def main() -> None:
     worst = accuracy(ratios if args.quick else ratios[::3])
     print("accuracy of the defaults (max relative difference to the refined reference): "
           + ", ".join(f"{q} {v:.1e}" for q, v in worst.items()))
+    print("thin layers (B4C example, h = H a0s):")
+    thin_layers()
 
 
 if __name__ == "__main__":

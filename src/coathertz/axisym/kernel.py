@@ -38,10 +38,12 @@ All forms are evaluated with ``exp(-2t)`` only (no overflow for large ``t``).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.polynomial import chebyshev as npcheb
 
 from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError
@@ -134,8 +136,80 @@ def layer_factor_frictionless(coating: Material, substrate: Material) -> LayerFa
     return F
 
 
+#: Interpolation table of a stack's ``F``: Chebyshev panels of this width in ``log t``, this many
+#: nodes each, from ``t = STACK_T_MIN``; accepted only if it matches direct evaluation to
+#: ``STACK_TABLE_TOL`` at the panel midpoints (otherwise ``F`` is evaluated directly).
+STACK_PANEL, STACK_NODES, STACK_T_MIN, STACK_TABLE_TOL = 0.5, 16, 1e-12, 1e-13
+
+
+class _StackTable:
+    """Piecewise-Chebyshev interpolant of ``F(t)`` in ``log t`` (``F`` is smooth there): a few
+    hundred 4x6 SVDs once per body instead of one per xi node and radius. Below ``STACK_T_MIN``
+    and above ``t_max`` (all layers 40 decay lengths deep: ``F = 1`` to 1e-30) exact values."""
+
+    def __init__(self, F_direct, t_max: float) -> None:
+        self.F_direct = F_direct
+        self.s0, self.s1 = math.log(STACK_T_MIN), math.log(t_max)
+        self.n_pan = max(1, math.ceil((self.s1 - self.s0) / STACK_PANEL))
+        self.w = (self.s1 - self.s0) / self.n_pan
+        x = np.cos(np.pi * (np.arange(STACK_NODES) + 0.5) / STACK_NODES)  # Chebyshev points
+        s = self.s0 + self.w * (np.arange(self.n_pan)[:, None] + 0.5 * (x[None, :] + 1.0))
+        vals = F_direct(np.exp(s.ravel())).reshape(s.shape)
+        self.coef = np.stack([npcheb.chebfit(x, v, STACK_NODES - 1) for v in vals])
+        mid = self.s0 + self.w * (np.arange(self.n_pan) + 0.37)
+        t_mid = np.exp(mid)
+        self.ok = bool(np.max(np.abs(self._interp(t_mid) - F_direct(t_mid))) < STACK_TABLE_TOL)
+        self.F0 = float(F_direct(np.zeros(1))[0])
+
+    def _interp(self, t: np.ndarray) -> np.ndarray:
+        s = np.log(t)
+        i = np.clip(((s - self.s0) / self.w).astype(int), 0, self.n_pan - 1)
+        x = 2.0 * (s - self.s0 - i * self.w) / self.w - 1.0
+        c = self.coef[i]  # (n, nodes)
+        # Clenshaw, vectorised over points with their own coefficients
+        b1 = np.zeros_like(x)
+        b2 = np.zeros_like(x)
+        for j in range(STACK_NODES - 1, 0, -1):
+            b1, b2 = 2.0 * x * b1 - b2 + c[:, j], b1
+        return x * b1 - b2 + c[:, 0]
+
+    def __call__(self, t: np.ndarray) -> np.ndarray:
+        t = np.asarray(t, dtype=float)
+        flat = t.ravel()
+        if not self.ok:
+            return self.F_direct(flat).reshape(t.shape)
+        out = np.ones_like(flat)
+        lo = flat < STACK_T_MIN
+        mid = ~lo & (flat <= math.exp(self.s1))
+        if np.any(lo):
+            out[lo] = self.F_direct(flat[lo])
+        if np.any(mid):
+            out[mid] = self._interp(flat[mid])
+        return out.reshape(t.shape)
+
+
+def stack_factor(body: Body, table: bool = True) -> tuple[LayerFactor, float]:
+    """``F`` of a body with a layer stack (:mod:`coathertz.stack`) as a function of
+    ``t = k h_min`` and ``h_min``, the thinnest layer [m] (it sets the decay of ``M``);
+    ``table``: through :class:`_StackTable` (checked against direct evaluation)."""
+    from coathertz.stack import StackLayer, stack_layer_factor
+
+    layers = [StackLayer(L.material, L.h, L.interface) for L in body.layers]
+    h_min = min(L.h for L in body.layers)
+
+    def F(t: np.ndarray) -> np.ndarray:
+        t = np.asarray(t, dtype=float)
+        return stack_layer_factor(layers, body.material, t.ravel() / h_min).reshape(t.shape)
+
+    if not table:
+        return F, h_min
+    return _StackTable(F, 40.0 * sum(L.h for L in body.layers) / h_min), h_min
+
+
 def body_layer_factor(body: Body, interface: str) -> LayerFactor | None:
     """The layer factor of a coated ``body``, ``None`` if it is homogeneous (``F = 1``)."""
+    if body.is_stacked:
+        return stack_factor(body)[0]
     if not body.is_coated:
         return None
     coat = body.coating.material
@@ -147,7 +221,9 @@ def body_layer_factor(body: Body, interface: str) -> LayerFactor | None:
 
 
 def top_compliance(body: Body) -> float:
-    """``(1 - nu^2)/E`` of the material at the body's surface (coating if coated), 0 if rigid."""
+    """``(1 - nu^2)/E`` of the material at the body's surface (coating or top layer), 0 if rigid."""
+    if body.is_stacked:
+        return body.layers[0].material.compliance
     return body.coating.material.compliance if body.is_coated else body.material.compliance
 
 
@@ -195,6 +271,10 @@ def pair_compliance(case: ContactCase, interface: str = "bonded") -> PairComplia
     E_ref = 1.0 / total
     terms = []
     for b, c in zip((case.body1, case.body2), comps, strict=True):
+        if b.is_stacked:
+            F, h = stack_factor(b)
+            terms.append((E_ref * c, F, h))
+            continue
         F = body_layer_factor(b, interface)
         if F is not None:
             terms.append((E_ref * c, F, b.coating.h))

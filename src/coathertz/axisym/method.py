@@ -15,6 +15,7 @@ import numpy as np
 from coathertz.axisym.kernel import INTERFACES, pair_compliance
 from coathertz.axisym.solver import (
     XiRule,
+    direct_end,
     displacement,
     initial_radius,
     peak_pressure,
@@ -196,6 +197,7 @@ class AxisymMethod:
             meta["accuracy"] = msg
         fields: dict[str, np.ndarray] = {}
         if self.keep_fields:
+            x_end = direct_end(n_modes, rule)
             rho_in = 0.5 * (1.0 - np.cos(np.linspace(0.0, math.pi, 121)))
             rho = np.concatenate([rho_in, np.linspace(1.0, 3.0, 25)[1:]])
             p = np.zeros_like(rho)
@@ -203,8 +205,11 @@ class AxisymMethod:
             fields = {
                 "r": rho * sol.a,
                 "pressure": p,
-                "u_z": displacement(pc, sol, rho, R, rule, self.decay),
+                "u_z": displacement(pc, sol, rho, R, rule, self.decay, max_xi=x_end),
             }
+            if math.isfinite(pc.h_min) and self.decay * sol.a / pc.h_min > x_end:
+                meta["u_z"] = (f"layer term of u_z outside the contact integrated to xi = {x_end:.0f} "
+                               f"(of {self.decay * sol.a / pc.h_min:.3g}): ~1e-8 of delta")
         meta["wall_time"] = time.perf_counter() - t0
         res = ContactResult(self.name, sol.delta, sol.a, p0, case.W, sol.a, sol.a, meta, fields)
         return check_validity(case, res)

@@ -76,7 +76,9 @@ def bessel_table(n_modes: int, X: float, rule: XiRule) -> tuple[np.ndarray, np.n
     if tab is None or tab.xi[-1] < X:
         X_new = X if tab is None else max(X, 2.0 * tab.xi[-1])
         xi, w = rule.nodes(X_new)
-        J = spherical_jn_all(2 * n_modes - 2, xi)[::2]
+        J = np.empty((n_modes, xi.size))
+        for i in range(0, xi.size, 2048):  # in chunks: the odd orders are never stored whole
+            J[:, i:i + 2048] = spherical_jn_all(2 * n_modes - 2, xi[i:i + 2048])[::2]
         tab = _Table(xi, w, J)
         _TABLES[key] = tab
         if len(_TABLES) > 8:
@@ -85,6 +87,115 @@ def bessel_table(n_modes: int, X: float, rule: XiRule) -> tuple[np.ndarray, np.n
     # whole panels only
     n = min(tab.xi.size, math.ceil(n / rule.order) * rule.order)
     return tab.xi[:n], tab.w[:n], tab.J[:, :n]
+
+
+# --- thin layers: the xi integral beyond X0 in closed form ------------------------------------------
+#
+# For xi >= X0 the spherical Bessel functions are evaluated from their exact finite expansions
+# (DLMF 10.49.2) ``j_l(x) = [sin(x - l pi/2) P_l(x) + cos(x - l pi/2) Q_l(x)] / x`` with
+# ``P_l = sum_{k even} (-1)^{k/2} a_k(l) x^-k``, ``Q_l = sum_{k odd} (-1)^{(k-1)/2} a_k(l) x^-k``,
+# ``a_k(l) = (l+k)! / (2^k k! (l-k)!)``. For ``l = 2m``:
+# ``j_{2m} = (-1)^m (S_m sin x + C_m cos x) / x`` and
+#
+# .. math::  j_{2m} j_{2n} = \frac{(-1)^{m+n}}{2x^2}\Bigl[S_mS_n + C_mC_n
+#            + \mathrm{Re}\bigl((C_m - iS_m)(C_n - iS_n) e^{2ix}\bigr)\Bigr].
+#
+# The non-oscillating part is integrated on geometric Gauss panels (``M(xi/a)/xi^2`` varies on the
+# scale ``xi``); the oscillating part ``int_X0^inf G(x) e^{2ix} dx`` by integration by parts,
+# ``-e^{2iX0} sum_j (-1)^j G^(j)(X0) / (2i)^(j+1)`` (four terms; each is ~ 1/X0 of the previous
+# one, ``G`` being smooth on the scale ``X0``), the derivatives by a 5-point stencil of step
+# ``X0/20``. The cost is then independent of ``h``: the direct rule covers ``[0, X0]`` only.
+
+#: Terms of the finite expansion kept: a_k(l)/X0^k < 8^k/k! < 1e-22 beyond.
+_N_ASYM = 56
+
+
+def tail_start(n_modes: int, panel: float) -> float:
+    """``X0``: where the direct xi rule stops and the closed-form tail starts (``>= l^2 / 16`` with
+    ``l = 2N - 2``, so that the finite expansion has terms ``<= 8^k/k! <= 420``: at most ~3 digits
+    lost to cancellation; ``l^2/16`` agrees with ``l^2/8`` to 2e-14 at N = 160, ``l^2/32`` does
+    not); at least 512)."""
+    l_max = 2 * n_modes - 2
+    X0 = max(l_max * l_max / 16.0, 512.0)
+    return panel * math.ceil(X0 / panel)
+
+
+def direct_end(n_modes: int, rule: XiRule) -> float:
+    """End of the direct xi rule: the first panel breakpoint at or beyond :func:`tail_start`."""
+    X0 = tail_start(n_modes, rule.panel)
+    return rule.xi_split + rule.panel * math.ceil((X0 - rule.xi_split) / rule.panel)
+
+
+def _asym_SC(n_modes: int, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Signed ``(-1)^m S_m(x)`` and ``(-1)^m C_m(x)`` (shape ``(n_modes, x.size)``), real or
+    complex ``x`` with ``|x| >= l^2/16``."""
+    x = np.asarray(x)
+    u = 1.0 / x
+    lv = 2.0 * np.arange(n_modes)[:, None]
+    a = np.ones((n_modes, 1))
+    S = np.ones((n_modes, x.size), dtype=x.dtype)
+    C = np.zeros_like(S)
+    uk = np.ones_like(x)
+    for k in range(min(2 * n_modes - 2, _N_ASYM)):
+        a = a * (lv + k + 1) * (lv - k) / (2.0 * (k + 1))  # a_{k+1}(l); 0 from k + 1 > l on
+        uk = uk * u
+        kk = k + 1
+        if kk % 2 == 0:
+            S = S + (-1.0) ** (kk // 2) * a * uk
+        else:
+            C = C + (-1.0) ** ((kk - 1) // 2) * a * uk
+    sg = np.where(np.arange(n_modes) % 2, -1.0, 1.0)[:, None]
+    return sg * S, sg * C
+
+
+_TAIL: dict[tuple[int, float], tuple] = {}
+
+
+def _tail_table(n_modes: int, X0: float, X1: float) -> tuple[np.ndarray, ...]:
+    """Nodes, weights, ``S``, ``C`` on geometric Gauss panels (ratio 1.5, 16 nodes) from ``X0``
+    to at least ``X1``, and ``Z = C - iS`` on the 5-point stencil at ``X0``; cached per
+    ``(N, X0)`` and extended when a thinner layer needs more panels (the nodes do not depend on
+    ``a`` or ``h``)."""
+    key = (n_modes, float(X0))
+    tab = _TAIL.get(key)
+    n_pan = max(1, math.ceil(math.log(max(X1, 2.0 * X0) / X0) / math.log(1.5)))
+    if tab is None or tab[0] < n_pan:
+        n_pan = max(n_pan, 0 if tab is None else 2 * tab[0])
+        b = X0 * 1.5 ** np.arange(n_pan + 1)
+        z, w = npleg.leggauss(16)
+        lo, hi = b[:-1, None], b[1:, None]
+        x = (0.5 * (hi - lo) * z + 0.5 * (hi + lo)).ravel()
+        wx = (0.5 * (hi - lo) * w).ravel()
+        S, C = _asym_SC(n_modes, x)
+        xs = X0 + (X0 / 20.0) * np.arange(-2, 3)
+        S5, C5 = _asym_SC(n_modes, xs)
+        tab = (n_pan, x, wx, S, C, xs, C5 - 1j * S5)
+        _TAIL[key] = tab
+        if len(_TAIL) > 8:
+            _TAIL.pop(next(iter(_TAIL)))
+    n = 16 * max(1, math.ceil(math.log(max(X1, 2.0 * X0) / X0) / math.log(1.5)))
+    _, x, wx, S, C, xs, Z = tab
+    return x[:n], wx[:n], S[:, :n], C[:, :n], xs, Z
+
+
+def tail_matrix(pc: PairCompliance, a: float, n_modes: int, X0: float, X1: float) -> np.ndarray:
+    """``int_X0^inf M(xi/a) j_{2m} j_{2n} dxi`` in closed form (the smooth part on panels up to at
+    least ``X1``, where ``M`` has decayed; the oscillating part by parts)."""
+    # non-oscillating part
+    x, w, S, C, xs, Z = _tail_table(n_modes, X0, X1)
+    wm = 0.5 * w * pc.M(x / a) / (x * x)
+    A = (S * wm) @ S.T + (C * wm) @ C.T
+    # oscillating part: integration by parts at X0
+    s = xs[1] - xs[0]
+    g = 0.5 * pc.M(xs / a) / (xs * xs)
+    G = [g[j] * np.outer(Z[:, j], Z[:, j]) for j in range(5)]
+    d0 = G[2]
+    d1 = (G[0] - 8.0 * G[1] + 8.0 * G[3] - G[4]) / (12.0 * s)
+    d2 = (-G[0] + 16.0 * G[1] - 30.0 * G[2] + 16.0 * G[3] - G[4]) / (12.0 * s * s)
+    d3 = (-G[0] + 2.0 * G[1] - 2.0 * G[3] + G[4]) / (2.0 * s**3)
+    i2 = 2.0j
+    osc = -np.exp(2.0j * X0) * (d0 / i2 - d1 / i2**2 + d2 / i2**3 - d3 / i2**4)
+    return A + osc.real
 
 
 # --- solution at a given contact radius ----------------------------------------------------------
@@ -120,9 +231,12 @@ def solve_at_radius(
     n_xi = 0
     if pc.terms:
         X = decay * a / pc.h_min
-        xi, w, J = bessel_table(n_modes, X, rule)
+        X0 = direct_end(n_modes, rule)
+        xi, w, J = bessel_table(n_modes, min(X, X0), rule)
         Mv = pc.M(xi / a)
         A = (J * (w * Mv)) @ J.T
+        if X > X0:  # thin layer: the rest in closed form (cost independent of h)
+            A = A + tail_matrix(pc, a, n_modes, X0, X)
         G = G + (2.0 / math.pi) * A
         n_xi = xi.size
     lu = lu_factor(G)
@@ -323,12 +437,13 @@ def peak_pressure(pc: PairCompliance, sol: RadiusSolution, n_scan: int = 129,
 
 
 def displacement(pc: PairCompliance, sol: RadiusSolution, rho: np.ndarray, R: float, rule: XiRule,
-                 decay: float = 24.0) -> np.ndarray:
+                 decay: float = 24.0, max_xi: float | None = None) -> np.ndarray:
     """Combined surface normal displacement of the two bodies ``u_z(r = rho a)`` [m].
 
     Inside the contact ``u_z = delta - r^2/(2R)`` (the contact condition, returned as such);
     outside, ``u_z = (2/pi) int_0^1 g(x) / sqrt(rho^2 - x^2) dx`` (homogeneous part, Sneddon)
-    ``+ (2/pi) sum_n d_n int M(xi/a) j_{2n}(xi) J_0(xi rho) dxi`` (layer correction).
+    ``+ (2/pi) sum_n d_n int M(xi/a) j_{2n}(xi) J_0(xi rho) dxi`` (layer correction), the latter
+    integrated up to ``min(decay a / h, max_xi)`` (``max_xi`` bounds the cost for thin layers).
     """
     from scipy.special import j0
 
@@ -348,6 +463,8 @@ def displacement(pc: PairCompliance, sol: RadiusSolution, rho: np.ndarray, R: fl
     um = np.zeros_like(ro)
     if pc.terms:
         X = decay * sol.a / pc.h_min
+        if max_xi is not None:
+            X = min(X, max_xi)
         xi, w, J = bessel_table(sol.c.size, X, rule)
         d = sol.c * (-1.0) ** np.arange(sol.c.size)
         kern = (d @ J) * w * pc.M(xi / sol.a)

@@ -40,7 +40,7 @@ def build_parser() -> argparse.ArgumentParser:
     for mod in _subcommands():
         p = sub.add_parser(mod.NAME, help=mod.HELP, description=mod.HELP)
         mod.add_arguments(p)
-        p.set_defaults(_run=mod.run)
+        p.set_defaults(_run=mod.run, _memory_hint=getattr(mod, "MEMORY_HINT", "a smaller problem"))
     return parser
 
 
@@ -77,8 +77,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             print(f"{prefix}: error: cannot access{where}: {exc.strerror or exc}", file=sys.stderr)
             return 2
         except MemoryError:
-            print(f"{prefix}: error: out of memory; use a coarser resolution (--mesh, --grid)",
-                  file=sys.stderr)
+            print(f"{prefix}: error: out of memory; use {args._memory_hint}", file=sys.stderr)
             return 2
         except KeyboardInterrupt:
             print(f"{prefix}: interrupted", file=sys.stderr)

@@ -16,7 +16,7 @@ from coathertz.case import ContactCase
 from coathertz.casefile import quantity
 from coathertz.errors import CoatHertzError
 from coathertz.jsonsafe import dumps
-from coathertz.materials import INTERFACES, RIGID, Body, Coating, Material
+from coathertz.materials import INTERFACES, RIGID, Body, Coating, Layer, Material
 from coathertz.results import ContactResult
 
 
@@ -32,9 +32,11 @@ def add_case_arguments(parser: argparse.ArgumentParser) -> None:
     g.add_argument("--indenter", help="indenter (body1) material: 'rigid' (default) or 'E,nu', "
                                       "e.g. '200 GPa,0.3'")
     g.add_argument("--substrate", help="substrate (body2) material: 'rigid' or 'E,nu', e.g. '200 GPa,0.3'")
-    g.add_argument("--coating", help="coating of body2: 'E,nu,h', e.g. '380 GPa,0.17,40 um'")
+    g.add_argument("--coating", action="append",
+                   help="coating of body2: 'E,nu,h', e.g. '380 GPa,0.17,40 um'; repeat it for a layer "
+                        "stack, top first (then 'E,nu,h[,frictionless]': the layer's lower interface)")
     g.add_argument("--interface", choices=INTERFACES,
-                   help="coating/substrate interface of every coating: bonded (the paper's model; the "
+                   help="coating/substrate interface of a single coating: bonded (the paper's model; the "
                         "default unless the case file says otherwise) or frictionless")
 
 
@@ -66,6 +68,23 @@ def _coating_flag(text: str) -> Coating:
     if cmat.is_rigid:
         raise CoatHertzError(f"--coating: the coating must be elastic ('E,nu,h'), got {text!r}")
     return Coating(cmat, quantity(parts[2], "length", "--coating: coating thickness h", minimum=">=0"))
+
+
+def _coatings_flag(texts: list[str]) -> tuple[Coating | None, tuple[Layer, ...]]:
+    """One ``--coating``: a coating; several: a layer stack, top first (issue 19)."""
+    if len(texts) == 1:
+        return _coating_flag(texts[0]), ()
+    layers = []
+    for i, text in enumerate(texts, 1):
+        parts = [p.strip() for p in text.split(",")]
+        if len(parts) not in (3, 4):
+            raise CoatHertzError(f"--coating (layer {i}) expects 'E,nu,h[,frictionless]', got {text!r}")
+        mat = _material_flag(",".join(parts[:2]), "--coating", f"layer {i}")
+        h = quantity(parts[2], "length", f"--coating: layer {i} thickness h")
+        layer = Layer(mat, h, parts[3] if len(parts) == 4 else "bonded")
+        layer.check(f"--coating: layer {i}")
+        layers.append(layer)
+    return None, tuple(layers)
 
 
 def _radius_flag(text: str) -> float:
@@ -111,15 +130,16 @@ def _case_from_flags(args: argparse.Namespace) -> ContactCase:
             mat = _material_flag(given["indenter"], "--indenter", "indenter") if "indenter" in given \
                 else b1.material
             changes["body1"] = Body(mat, b1.coating, b1.Rx if R is None else R, b1.Ry if R is None else R,
-                                    b1.name)
+                                    b1.name, layers=b1.layers)
         if "substrate" in given or "coating" in given:
             mat = _material_flag(given["substrate"], "--substrate", "substrate") if "substrate" in given \
                 else b2.material
-            coat = _coating_flag(given["coating"]) if "coating" in given else b2.coating
+            coat, layers = _coatings_flag(given["coating"]) if "coating" in given else (b2.coating, b2.layers)
             if coat is not None and b2.coating is not None:  # the file's interface stays
                 coat = dataclasses.replace(coat, interface=b2.coating.interface)
-            changes["body2"] = Body(mat, coat, b2.Rx, b2.Ry, b2.name)
-        note = ", ".join(f"--{k} {v}" for k, v in given.items())
+            changes["body2"] = Body(mat, coat, b2.Rx, b2.Ry, b2.name, layers=layers)
+        note = ", ".join(f"--{k} {v}" if k != "coating" else " ".join(f"--coating {c}" for c in v)
+                         for k, v in given.items())
         return case.replace(label=f"{case.label or args.case} with {note}", **changes)
     missing = [f"--{k}" for k in ("W", "R", "substrate") if k not in given]
     if missing:
@@ -128,8 +148,8 @@ def _case_from_flags(args: argparse.Namespace) -> ContactCase:
     R = _radius_flag(given["R"])
     indenter = _material_flag(given.get("indenter", "rigid"), "--indenter", "indenter")
     substrate = _material_flag(given["substrate"], "--substrate", "substrate")
-    coating = _coating_flag(given["coating"]) if "coating" in given else None
-    return ContactCase(Body(indenter, None, R, R), Body(substrate, coating), W)
+    coating, layers = _coatings_flag(given["coating"]) if "coating" in given else (None, ())
+    return ContactCase(Body(indenter, None, R, R), Body(substrate, coating, layers=layers), W)
 
 
 def list_examples() -> int:

@@ -8,6 +8,8 @@ from coathertz.cli._common import add_case_arguments, add_fields_argument
 
 NAME = "axisym"
 HELP = "exact axisymmetric solution of one circular case (delta, a, p0 and its radius, profiles)"
+#: What to lower when the command runs out of memory (named in the error).
+MEMORY_HINT = "fewer Legendre modes (--modes)"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -45,7 +47,8 @@ def run(args: argparse.Namespace) -> int:
         return 0
     norm = case.normalisers
     m = res.meta
-    print(f"  {m['interface']} interface; {m['n_modes']} Legendre modes, {m['n_xi']} xi nodes, "
+    itf = "interfaces of the layer stack" if case.is_stacked else f"{m['interface']} interface"
+    print(f"  {itf}; {m['n_modes']} Legendre modes, {m['n_xi']} xi nodes, "
           f"{m['iterations']} load iterations, {m['wall_time'] * 1e3:.1f} ms")
     r_p0 = m["r_p0"]
     where = "on the axis" if r_p0 == 0.0 else f"at r = {r_p0 * 1e6:.4g} um ({r_p0 / res.a:.3f} a)"

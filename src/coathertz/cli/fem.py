@@ -8,6 +8,8 @@ from coathertz.cli._common import add_case_arguments
 
 NAME = "fem"
 HELP = "axisymmetric finite-element solution of one case (delta, a, p0, stresses, VTU output)"
+#: What to lower when the command runs out of memory (named in the error).
+MEMORY_HINT = "a coarser mesh (--mesh)"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:

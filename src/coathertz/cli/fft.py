@@ -9,6 +9,8 @@ from coathertz.cli._common import add_case_arguments, add_fields_argument
 
 NAME = "fft"
 HELP = "DC-FFT contact solution of one case (delta, a, p0, iterations, residual)"
+#: What to lower when the command runs out of memory (named in the error).
+MEMORY_HINT = "a coarser grid (--grid)"
 
 
 def _layer_cells(text: str) -> float | None:

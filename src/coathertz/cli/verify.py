@@ -10,6 +10,8 @@ from pathlib import Path
 
 NAME = "verify"
 HELP = "run the paper's studies (closed form, FFT, FE) and write the verification report"
+#: What to lower when the command runs out of memory (named in the error).
+MEMORY_HINT = "a lower resolution (--tiny, --quick)"
 
 #: dask.distributed protocols a scheduler of another process can be reached by.
 SCHEDULER_PROTOCOLS = ("tcp", "tls", "ws", "wss", "ucx")

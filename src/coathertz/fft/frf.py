@@ -84,6 +84,35 @@ class Layer:
         return layer_factor_tm(t, self.coating, self.substrate, "frictionless")
 
 
+@dataclass(frozen=True)
+class StackFRF:
+    """A layer stack (issue 19) in the form :class:`Layer` has for the cell coefficients: ``F(t)``
+    with ``t = w h_ref`` (``h_ref``: the stack's total thickness) from the shared N-layer kernel
+    definition :func:`coathertz.stack.stack_layer_factor` (complex ``t`` allowed), ``F0``, and
+    the top material ``coating`` (its ``E*`` normalises ``F``)."""
+
+    layers: tuple
+    substrate: Material
+    h_ref: float
+
+    @property
+    def coating(self) -> Material:
+        return self.layers[0].material
+
+    @property
+    def F0(self) -> float:
+        """``F(0) = E_top*/Es*``; 0 on a rigid substrate."""
+        return 0.0 if self.substrate.is_rigid else self.coating.E_star / self.substrate.E_star
+
+    def factor(self, t: np.ndarray) -> np.ndarray:
+        from coathertz.stack import StackLayer, stack_layer_factor
+
+        t = np.asarray(t)
+        layers = [StackLayer(L.material, L.h, L.interface) for L in self.layers]
+        out = stack_layer_factor(layers, self.substrate, t.ravel() / self.h_ref)
+        return out.reshape(t.shape)
+
+
 def layer_factor_eq13(t, coating: Material, substrate: Material) -> np.ndarray:
     """Layer factor of eq (13): ``u~ = 2/(Ec* w) F(w h)``, bonded interface.
 

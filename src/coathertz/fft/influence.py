@@ -62,7 +62,7 @@ from scipy.interpolate import CubicSpline
 from scipy.special import j0
 
 from coathertz.errors import CoatHertzError
-from coathertz.fft.frf import Layer, taylor_coefficients
+from coathertz.fft.frf import Layer, StackFRF, taylor_coefficients
 from coathertz.materials import Body
 
 C_DECAY = 2.0  # c of the split-off terms e^{-c w h}: matches theta = e^{-2 w h} of eq (13)
@@ -227,11 +227,16 @@ def layer_coefficients(
 
     See the module docstring for the method. ``coating_body.coating.h = 0`` gives the substrate.
     """
-    if coating_body.coating is None or coating_body.coating.h == 0:
+    if coating_body.is_stacked:  # issue 19: the stack's F in t = w h (h: total thickness)
+        h = sum(L.h for L in coating_body.layers)
+        layer = StackFRF(coating_body.layers, coating_body.material, h)
+        cmat = layer.coating
+    elif coating_body.coating is None or coating_body.coating.h == 0:
         return love_coefficients(nx, ny, dx, dy, coating_body.material.E_star)
-    cmat = coating_body.coating.material
-    h = coating_body.coating.h
-    layer = Layer(cmat, coating_body.material, interface)
+    else:
+        cmat = coating_body.coating.material
+        h = coating_body.coating.h
+        layer = Layer(cmat, coating_body.material, interface)
     Ec = cmat.E_star
     split = LayerSplit.of(layer)
     a = split.c * h
@@ -253,7 +258,7 @@ def body_coefficients(
     """Cell coefficients of one body: zero if rigid, Love if uncoated, else layered."""
     if body.is_rigid:
         return np.zeros((ny + 1, nx + 1))
-    if body.is_coated:
+    if body.is_coated or body.is_stacked:
         return layer_coefficients(body, nx, ny, dx, dy, interface)
     return love_coefficients(nx, ny, dx, dy, body.material.E_star)
 

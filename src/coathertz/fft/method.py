@@ -556,8 +556,9 @@ class FFTMethod:
             # a frictionless interface slips even then (p is not Hertzian; the p^2 fit missed
             # a by -0.18 % at E = 1, H = 0.01, and did not converge with n)
             hertzian = all(
-                b.coating is None
-                or (b.coating.material == b.material and c.interface_for(self.interface) == "bonded")
+                (b.coating is None and not b.is_stacked)
+                or (b.coating is not None and b.coating.material == b.material
+                    and c.interface_for(self.interface) == "bonded")
                 for b in (c.body1, c.body2)
             )
             if not (hertzian and circular):
@@ -662,13 +663,20 @@ def _layer_resolution(case: ContactCase, grid: Grid, base: float) -> tuple[float
     times ``STIFF_FACTOR`` for a coating more than ``STIFF_CONTRAST`` times stiffer than its
     elastic substrate) and the even ``n`` that gives it those on the same domain (the cell
     shrinks like ``1 / (n/2 - 1/2)``)."""
-    coated = [b for b in (case.body1, case.body2) if b.coating is not None and b.coating.h > 0]
-    if not coated:
+    # (h, material, material below) of each coating, or of a stack's top layer (issue 19: the
+    # edge boundary layer has the width of the top layer; buried layers act at longer waves)
+    layers = []
+    for b in (case.body1, case.body2):
+        if b.coating is not None and b.coating.h > 0:
+            layers.append((b.coating.h, b.coating.material, b.material))
+        if b.layers:
+            below = b.layers[1].material if len(b.layers) > 1 else b.material
+            layers.append((b.layers[0].h, b.layers[0].material, below))
+    if not layers:
         return math.inf, base, grid.nx
-    b = min(coated, key=lambda b: b.coating.h)
-    cells = b.coating.h / max(grid.dx, grid.dy)
-    stiff = (not b.material.is_rigid
-             and b.coating.material.E_star > STIFF_CONTRAST * b.material.E_star)
+    h, coat, sub = min(layers, key=lambda x: x[0])
+    cells = h / max(grid.dx, grid.dy)
+    stiff = not sub.is_rigid and coat.E_star > STIFF_CONTRAST * sub.E_star
     need = base * STIFF_FACTOR if stiff else base
     return cells, need, 2 * math.ceil((grid.nx / 2 - 0.5) * need / cells + 0.5)
 

@@ -1,0 +1,114 @@
+"""The N-layer kernel definition (``coathertz.stack``): identities and the one-layer closed
+forms of eq (13) and the frictionless/rigid-substrate forms of ``coathertz.axisym.kernel``."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from coathertz.axisym.kernel import layer_factor_bonded, layer_factor_frictionless
+from coathertz.errors import CoatHertzError
+from coathertz.materials import RIGID, Material
+from coathertz.stack import StackLayer, stack_layer_factor
+
+STEEL = Material(200e9, 0.3)
+T = np.logspace(-8, 2.5, 80)  # k h of the top layer
+COATINGS = [Material(800e9, 0.25), Material(50e9, 0.45), Material(300e9, 0.5), Material(2e9, 0.3)]
+
+#: Absolute tolerance on F (F is O(1); measured <= 1.1e-14: a 4x6 SVD per k, well scaled).
+TOL = 1e-12
+
+
+@pytest.mark.parametrize("coating", COATINGS, ids=lambda m: f"E{m.E / 1e9:g}nu{m.nu:g}")
+@pytest.mark.parametrize("substrate", [STEEL, RIGID], ids=["elastic", "rigid"])
+@pytest.mark.parametrize("interface", ["bonded", "frictionless"])
+def test_one_layer_equals_closed_form(coating, substrate, interface):
+    ref = (layer_factor_bonded if interface == "bonded" else layer_factor_frictionless)(coating, substrate)
+    F = stack_layer_factor([StackLayer(coating, 1.0, interface)], substrate, T)
+    err = np.abs(F - ref(T)).max()
+    assert err < TOL, f"N = 1 vs closed form: max |dF| = {err:.2e}"
+
+
+@pytest.mark.parametrize("substrate", [STEEL, RIGID], ids=["elastic", "rigid"])
+@pytest.mark.parametrize("interface", ["bonded", "frictionless"])
+def test_two_identical_layers_are_one(substrate, interface):
+    c = Material(400e9, 0.22)
+    one = stack_layer_factor([StackLayer(c, 1.0, interface)], substrate, T)
+    two = stack_layer_factor([StackLayer(c, 0.3), StackLayer(c, 0.7, interface)], substrate, T)
+    err = np.abs(one - two).max()
+    assert err < TOL, f"h = 0.3 + 0.7 vs h = 1: max |dF| = {err:.2e}"
+
+
+@pytest.mark.parametrize("interface", ["bonded", "frictionless"])
+def test_layer_of_substrate_material_adds_nothing(interface):
+    c = Material(600e9, 0.2)
+    one = stack_layer_factor([StackLayer(c, 1.0, interface)], STEEL, T)
+    two = stack_layer_factor([StackLayer(c, 1.0, interface), StackLayer(STEEL, 2.0)], STEEL, T)
+    err = np.abs(one - two).max()
+    assert err < TOL, f"extra steel layer on steel: max |dF| = {err:.2e}"
+
+
+@pytest.mark.parametrize("where", [0, 1, 2])
+def test_zero_thickness_bonded_layer_adds_nothing(where):
+    base = [StackLayer(Material(300e9, 0.25), 1.0), StackLayer(Material(100e9, 0.35), 0.5)]
+    ref = stack_layer_factor(base, STEEL, T)
+    layers = list(base)
+    layers.insert(where, StackLayer(Material(5e9, 0.49), 0.0))
+    F = stack_layer_factor(layers, STEEL, T) if where else None
+    if where == 0:  # a zero-thickness top layer changes E_top*: compare the compliance F / E_top*
+        F = stack_layer_factor(layers, STEEL, T) * base[0].material.E_star / layers[0].material.E_star
+    err = np.abs(F - ref).max()
+    assert err < TOL, f"zero-thickness layer at position {where}: max |dF| = {err:.2e}"
+
+
+@pytest.mark.parametrize("substrate", [STEEL, RIGID], ids=["elastic", "rigid"])
+def test_limits_of_a_three_layer_stack(substrate):
+    """``F -> 1`` (top layer as a half-space) for ``kh -> inf``; ``F -> E_1*/E_s*`` (0 on a rigid
+    base) for ``kh -> 0``: the substrate, through a stack of vanishing thickness."""
+    top = Material(300e9, 0.2)
+    layers = [StackLayer(top, 1.0), StackLayer(Material(20e9, 0.5), 0.3, "frictionless"),
+              StackLayer(Material(900e9, 0.25), 2.0)]
+    F = stack_layer_factor(layers, substrate, np.array([1e-9, 200.0]))
+    F0 = 0.0 if substrate.is_rigid else top.E_star / substrate.E_star
+    assert abs(F[1] - 1.0) < 1e-13, F
+    assert abs(F[0] - F0) < 1e-7, f"long-wave limit {F[0]!r} vs {F0!r}"
+
+
+@pytest.mark.parametrize("layers,text", [
+    ([], "stack is empty"),
+    ([StackLayer(STEEL, 1.0), StackLayer(STEEL, -1.0)], "layer 2 thickness h must be >= 0 m"),
+    ([StackLayer(STEEL, 1.0, "glued")], "layer 1 interface must be one of"),
+    ([StackLayer(RIGID, 1.0)], "layer 1 must be elastic"),
+])
+def test_bad_stack_is_one_clear_line(layers, text):
+    with pytest.raises(CoatHertzError, match=text) as exc:
+        stack_layer_factor(layers, STEEL, T)
+    assert "\n" not in str(exc.value)
+
+
+@pytest.mark.parametrize("example", ["dlc_crn_cr_on_steel", "tin_ti_on_steel", "graded_on_steel"])
+def test_axisym_stack_table_matches_direct(example):
+    """The exact method's interpolation table of a stack's F equals direct evaluation to 1e-13
+    (measured <= 1.4e-14) from kh = 1e-14 to 1e3, and is used (not the fallback)."""
+    from coathertz.axisym.kernel import stack_factor
+    from coathertz.casefile import load_example
+
+    body = load_example(example).body2
+    Ft, _ = stack_factor(body)
+    Fd, _ = stack_factor(body, table=False)
+    t = np.exp(np.random.default_rng(0).uniform(np.log(1e-14), np.log(1e3), 3000))
+    assert Ft.ok
+    err = np.abs(Ft(t) - Fd(t)).max()
+    assert err < 1e-13, f"table vs direct: {err:.2e}"
+
+
+@pytest.mark.parametrize("interface", ["bonded", "frictionless"])
+def test_deep_bottom_layer_acts_as_substrate(interface):
+    """A bottom layer 1000 times the top one is the substrate for k h_top >= 0.02 (its own depth is
+    then >= 20 decay lengths): equals the one-coating closed form on that material."""
+    c, mid = Material(500e9, 0.2), Material(90e9, 0.4)
+    t = np.logspace(np.log10(0.02), 2, 40)
+    F = stack_layer_factor([StackLayer(c, 1.0, interface), StackLayer(mid, 1000.0)], STEEL, t)
+    ref = (layer_factor_bonded if interface == "bonded" else layer_factor_frictionless)(c, mid)(t)
+    err = np.abs(F - ref).max()
+    assert err < TOL, f"deep layer vs substrate: {err:.2e}"
