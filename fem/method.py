@@ -63,7 +63,7 @@ class Equivalent:
 
 def axisymmetric_equivalent(case: ContactCase) -> Equivalent | None:
     """The model problem that ``case`` reduces to, or ``None`` (see module docstring)."""
-    if not case.is_circular or case.is_stacked:  # issue 19: no layer stacks in the FE model
+    if not case.is_circular or case.is_stacked:  # no layer stacks in the FE model
         return None
     b1, b2 = case.body1, case.body2
     if b1.is_rigid and not b2.is_rigid:

@@ -1,4 +1,4 @@
-r"""Layer stacks (issue 19): an interlayer's modulus and thickness against delta, a and p0.
+r"""Layer stacks: an interlayer's modulus and thickness against delta, a and p0.
 
 Not a figure of the paper: an extension. Configuration: a rigid sphere (R = 5 mm, W = 2 N) on a
 3 um TiN top layer (450 GPa, nu = 0.25) over an interlayer (modulus ratio
@@ -26,7 +26,7 @@ from coathertz.materials import Body, Layer, Material
 
 NAME = "multilayer"
 TITLE = "Layer stacks: TiN over an interlayer (modulus ratio, thickness) on steel, rigid sphere"
-CLAIM = ("Extension (issue 19): an interlayer of the substrate's material adds nothing; the "
+CLAIM = ("Extension: an interlayer of the substrate's material adds nothing; the "
          "interlayer's modulus and thickness against delta, a, p0 (exact method and FFT).")
 STEEL = Material(210e9, 0.3)
 TIN = Material(450e9, 0.25)

@@ -63,7 +63,7 @@ class ContactCase:
 
     @property
     def is_stacked(self) -> bool:
-        """A body carries a layer stack (issue 19): only stack-aware methods (axisym) solve it."""
+        """A body carries a layer stack: only stack-aware methods (axisym, fft) solve it."""
         return self.body1.is_stacked or self.body2.is_stacked
 
     def __post_init__(self) -> None:

@@ -236,7 +236,7 @@ LAYER_INTERFACES = INTERFACES
 
 @dataclass(frozen=True)
 class Layer:
-    """One layer of a stack (issue 19): ``material``, thickness ``h`` [m], ``0 < h < inf``, and
+    """One layer of a stack: ``material``, thickness ``h`` [m], ``0 < h < inf``, and
     how its lower face is joined to what lies below (``bonded`` or ``frictionless``)."""
 
     material: Material
@@ -340,7 +340,7 @@ class Body:
     name
         Optional label.
     layers
-        Optional stack of :class:`Layer` (top first) instead of ``coating`` (issue 19); only the
+        Optional stack of :class:`Layer` (top first) instead of ``coating``; only the
         methods that model stacks (``axisym``) accept a body with layers, the others refuse it.
     """
 

@@ -1,4 +1,4 @@
-r"""Layer factor ``F(kh)`` of an ordered stack of layers on a substrate (issue 19, scope 3).
+r"""Layer factor ``F(kh)`` of an ordered stack of layers on a substrate.
 
 A body with layers ``i = 1..N`` (top first; material ``E_i, nu_i``, thickness ``h_i``; each
 interface bonded or frictionless) on an elastic or rigid substrate has, for a normal surface

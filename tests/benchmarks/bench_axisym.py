@@ -9,7 +9,7 @@ Reports, in one run:
 3. the accuracy of the default settings against a reference with ~2x the modes and denser
    quadrature (n_modes = 2 x default + 16, 20 nodes per panel, decay 30) on 25 E x 7 H
    (goal: <= 1e-6 in delta, a, p0);
-4. thin layers (issue 19): the B4C example (example:b4c_on_steel) with h from H = 1e-5 (1 nm is
+4. thin layers: the B4C example (example:b4c_on_steel) with h from H = 1e-5 (1 nm is
    H ~ 2.4e-5) to 10: warm time per case, traced peak memory of a cold solve (caches cleared) and
    the difference of delta, a, p0 to a solve with twice the modes (goal: <= 50 ms, <= 200 MB).
 

@@ -22,7 +22,7 @@ bounded (``M(0) = E_ref/E_s - 1``; ``-1`` on a rigid base) and decays like
 ``(kh)^2 exp(-2kh)``. The homogeneous part ``2/(E_ref k)`` is treated exactly (Sneddon/Abel);
 only ``M`` enters a numerical integral. Two identical coated bodies simply give two equal terms.
 
-*Layer stacks* (issue 19; ``Body.layers``, top first, each interface bonded or frictionless, elastic
+*Layer stacks* (``Body.layers``, top first, each interface bonded or frictionless, elastic
 or rigid substrate): ``F_i`` is the N-layer factor of :mod:`coathertz.stack` (bounded
 exponentials only, a 4x6 null space per ``k``; equal to the closed forms above for N = 1 to 1e-14),
 tabulated once per body on Chebyshev panels in ``log kh`` (checked against direct evaluation to

@@ -71,7 +71,7 @@ def _coating_flag(text: str) -> Coating:
 
 
 def _coatings_flag(texts: list[str]) -> tuple[Coating | None, tuple[Layer, ...]]:
-    """One ``--coating``: a coating; several: a layer stack, top first (issue 19)."""
+    """One ``--coating``: a coating; several: a layer stack, top first."""
     if len(texts) == 1:
         return _coating_flag(texts[0]), ()
     layers = []

@@ -86,7 +86,7 @@ class Layer:
 
 @dataclass(frozen=True)
 class StackFRF:
-    """A layer stack (issue 19) in the form :class:`Layer` has for the cell coefficients: ``F(t)``
+    """A layer stack in the form :class:`Layer` has for the cell coefficients: ``F(t)``
     with ``t = w h_ref`` (``h_ref``: the stack's total thickness) from the shared N-layer kernel
     definition :func:`coathertz.stack.stack_layer_factor` (complex ``t`` allowed), ``F0``, and
     the top material ``coating`` (its ``E*`` normalises ``F``)."""

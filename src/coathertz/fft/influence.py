@@ -227,7 +227,7 @@ def layer_coefficients(
 
     See the module docstring for the method. ``coating_body.coating.h = 0`` gives the substrate.
     """
-    if coating_body.is_stacked:  # issue 19: the stack's F in t = w h (h: total thickness)
+    if coating_body.is_stacked:  # the stack's F in t = w h (h: total thickness)
         h = sum(L.h for L in coating_body.layers)
         layer = StackFRF(coating_body.layers, coating_body.material, h)
         cmat = layer.coating

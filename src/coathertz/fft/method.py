@@ -663,7 +663,7 @@ def _layer_resolution(case: ContactCase, grid: Grid, base: float) -> tuple[float
     times ``STIFF_FACTOR`` for a coating more than ``STIFF_CONTRAST`` times stiffer than its
     elastic substrate) and the even ``n`` that gives it those on the same domain (the cell
     shrinks like ``1 / (n/2 - 1/2)``)."""
-    # (h, material, material below) of each coating, or of a stack's top layer (issue 19: the
+    # (h, material, material below) of each coating, or of a stack's top layer (the
     # edge boundary layer has the width of the top layer; buried layers act at longer waves)
     layers = []
     for b in (case.body1, case.body2):
