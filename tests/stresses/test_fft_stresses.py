@@ -84,17 +84,24 @@ def test_interface_conditions(interface, substrate):
     h = 1e-5
     frf = CoatedStressFRF(layer, h)
     w = np.geomspace(1e-3, 30.0, 200) / h
-    x = frf.coefficients(w)
-    above = frf.at(w, h, x)
-    below = frf.at(w, h * (1 + 1e-12), x)
-    # sigma_zz and sigma_xz continuous (traction continuity); 6x6 solve round-off only
-    assert np.abs(above[2] - below[2]).max() < 1e-8
-    assert np.abs(above[3] - below[3]).max() < 1e-8
+    coef = frf.coefficients(w)
+    above = frf.at(w, h, coef)
+    below = frf.at(w, h * (1 + 1e-12), coef)
+    top = frf.at(w, 0.0, coef)
+    tol = 1e-8  # 6 x 6 solve round-off only
+    for load, surface in (("normal", (-1.0, 0.0)), ("tangential", (0.0, 1.0))):
+        up, down, s0 = getattr(above, load), getattr(below, load), getattr(top, load)
+        # traction continuity: sigma_zz (row 2) and sigma_kz (row 3)
+        assert np.abs(up[2] - down[2]).max() < tol, load
+        assert np.abs(up[3] - down[3]).max() < tol, load
+        if interface == "frictionless":
+            assert np.abs(up[3]).max() < tol and np.abs(down[3]).max() < tol, load
+        assert np.abs(s0[2] - surface[0]).max() < tol and np.abs(s0[3] - surface[1]).max() < tol
+    # antiplane: sigma_pz continuous (zero on a frictionless interface), -1 at the surface
+    assert np.abs(above.antiplane[1] - below.antiplane[1]).max() < tol
     if interface == "frictionless":
-        assert np.abs(above[3]).max() < 1e-8 and np.abs(below[3]).max() < 1e-8
-    # surface conditions: sigma_zz = -1, sigma_xz = 0
-    top = frf.at(w, 0.0, x)
-    assert np.abs(top[2] + 1).max() < 1e-8 and np.abs(top[3]).max() < 1e-8
+        assert np.abs(above.antiplane[1]).max() < tol
+    assert np.abs(top.antiplane[1] + 1).max() < tol
 
 
 def test_same_material_coating_is_homogeneous(hertz):

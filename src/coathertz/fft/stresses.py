@@ -74,6 +74,21 @@ def _rows_stress(z, nu, E, kind):
 
 
 @dataclass(frozen=True)
+class StressRows:
+    """Real response rows at one depth, per wavenumber (see the module docstring).
+
+    ``normal``: ``(kk, pp, zz, kz)`` under ``P cos kx`` (sigma_kz ~ sin kx);
+    ``tangential``: the same rows under ``Q cos kx`` along ``k`` (sigma_kz ~ -cos kx, the others
+    ~ sin kx); ``antiplane``: ``(kp, pz)`` under ``Q cos kx`` normal to ``k``
+    (sigma_pz = pz cos kx, sigma_kp = -kp sin kx).
+    """
+
+    normal: tuple
+    tangential: tuple
+    antiplane: tuple
+
+
+@dataclass(frozen=True)
 class CoatedStressFRF:
     """Stress responses of a coating of thickness ``h`` [m] on its substrate (``layer``)."""
 
@@ -84,8 +99,10 @@ class CoatedStressFRF:
         if not (np.isfinite(self.h) and self.h > 0):
             raise CoatHertzError(f"coating thickness h must be finite and > 0 [m], got {self.h!r}")
 
-    def coefficients(self, w: np.ndarray) -> np.ndarray:
-        """Coefficients ``(A, B, C, D, A2, B2)`` per wavenumber (unit pressure amplitude)."""
+    def coefficients(self, w: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """In-plane coefficients ``(A, B, C, D, A2, B2)`` for the normal and the tangential load
+        (shape ``w.shape + (6, 2)``) and antiplane ``(alpha, beta, gamma)`` (``w.shape + (3,)``).
+        """
         coating, substrate = self.layer.coating, self.layer.substrate
         interface = self.layer.interface
         t = np.maximum(np.asarray(w, dtype=float).ravel() * self.h, T_MIN)
@@ -96,11 +113,12 @@ class CoatedStressFRF:
         L0 = [_columns(zero, nu_c, one if k in "AB" else eh, k) for k in "ABCD"]
         Lh = [_columns(t, nu_c, eh if k in "AB" else one, k) for k in "ABCD"]
         M = np.zeros((n, 6, 6))
-        rhs = np.zeros((n, 6))
+        rhs = np.zeros((n, 6, 2))
         for j in range(4):
             M[:, 0, j] = L0[j][2]
             M[:, 1, j] = L0[j][3]
-        rhs[:, 0] = -1.0
+        rhs[:, 0, 0] = -1.0  # normal: sigma_zz(0) = -P
+        rhs[:, 1, 1] = 1.0  # tangential: row kz(0) = Q, i.e. sigma_xz(0) = -Q cos kx
         if substrate.is_rigid:
             M[:, 4, 4] = M[:, 5, 5] = 1.0
             rows = (0, 1) if interface == "bonded" else (1, 3)
@@ -124,61 +142,99 @@ class CoatedStressFRF:
                     M[:, 4, j] = Lh[j][3]
                 for j in range(2):
                     M[:, 5, 4 + j] = S[j][3]
-        return np.linalg.solve(M, rhs[..., None])[..., 0].reshape((*np.shape(w), 6))
+        x = np.linalg.solve(M, rhs)
+        # antiplane: U = a e^{-kz} + b e^{-k(h-z)} (coating), c e^{-k(z-h)} (substrate);
+        # alpha = G_c k a / Q etc.: -alpha + beta e^{-t} = -1 (sigma_pz(0) = -Q), and
+        # beta = rho alpha e^{-t}, rho = (1 - r)/(1 + r), r = G_s/G_c (bonded; -1 on a rigid
+        # substrate) or rho = 1 (frictionless: sigma_pz(h) = 0); gamma = alpha e^{-t} + beta.
+        if interface == "frictionless":
+            rho = 1.0
+        elif substrate.is_rigid:
+            rho = -1.0
+        else:
+            r_g = substrate.G / coating.G
+            rho = (1 - r_g) / (1 + r_g)
+        alpha = 1.0 / (1.0 - rho * eh * eh)
+        beta = rho * alpha * eh
+        gamma = np.zeros_like(t) if interface == "frictionless" else alpha * eh + beta
+        xa = np.stack([alpha, beta, gamma], axis=-1)
+        shape = np.shape(w)
+        return x.reshape((*shape, 6, 2)), xa.reshape((*shape, 3))
 
-    def at(self, w: np.ndarray, z: float, x: np.ndarray | None = None) -> np.ndarray:
-        """``(S_kk, S_pp, S_zz, S_kz)`` at depth ``z`` [m], shape ``(4,) + w.shape``.
+    def at(self, w: np.ndarray, z: float, coef=None) -> StressRows:
+        """Response rows at depth ``z`` [m].
 
         On the interface ``z = h`` the coating's side is returned; a rigid substrate has no
         stresses below ``h`` (raises).
         """
         w = np.asarray(w, dtype=float)
-        if x is None:
-            x = self.coefficients(w)
+        x, xa = self.coefficients(w) if coef is None else coef
+        s, sh = w * z, w * self.h
         if z <= self.h:
-            s, sh = w * z, w * self.h
             ea, ec = np.exp(-s), np.exp(-(sh - s))
             rows = [_rows_stress(s, self.layer.coating.nu, ea if k in "AB" else ec, k)
                     for k in "ABCD"]
-            return np.array([sum(rows[j][q] * x[..., j] for j in range(4)) for q in range(4)])
-        if self.layer.substrate.is_rigid:
-            raise CoatHertzError(
-                f"depth z = {z:g} m lies in the rigid substrate (z must be in [0, h = {self.h:g}] m)"
-            )
-        s = w * z
-        e = np.exp(-(s - w * self.h))
-        rows = [_rows_stress(s, self.layer.substrate.nu, e, k) for k in "AB"]
-        return np.array([sum(rows[j][q] * x[..., 4 + j] for j in range(2)) for q in range(4)])
+            cols = range(4)
+            a, b = xa[..., 0], xa[..., 1]
+            anti = (a * ea + b * ec, -a * ea + b * ec)
+        else:
+            if self.layer.substrate.is_rigid:
+                raise CoatHertzError(
+                    f"depth z = {z:g} m lies in the rigid substrate "
+                    f"(z must be in [0, h = {self.h:g}] m)"
+                )
+            e = np.exp(-(s - sh))
+            rows = [None] * 4 + [_rows_stress(s, self.layer.substrate.nu, e, k) for k in "AB"]
+            cols = range(4, 6)
+            r_g = self.layer.substrate.G / self.layer.coating.G
+            g = xa[..., 2] * r_g * e
+            anti = (g, -g)
+
+        def combine(m: int) -> tuple:
+            return tuple(sum(rows[j][q] * x[..., j, m] for j in cols) for q in range(4))
+
+        return StressRows(combine(0), combine(1), anti)
 
 
 @dataclass(frozen=True)
 class HomogeneousStressFRF:
-    """Stress responses of a homogeneous half-space of Poisson's ratio ``nu`` (closed form)."""
+    """Stress responses of a homogeneous half-space of Poisson's ratio ``nu`` (closed form).
+
+    Normal load: ``A = 1 - 2 nu, B = -1``; tangential load along ``k``: ``A = 2 (1 - nu),
+    B = -1``, rows ``(s - 2, -2 nu, -s, 1 - s) e^{-s}``; antiplane: ``U = Q e^{-kz}/(G k)``.
+    """
 
     nu: float
 
     def coefficients(self, w: np.ndarray) -> None:
         return None
 
-    def at(self, w: np.ndarray, z: float, x=None) -> np.ndarray:
+    def at(self, w: np.ndarray, z: float, coef=None) -> StressRows:
         s = np.asarray(w, dtype=float) * z
         e = np.exp(-s)
-        return np.array([(s - 1) * e, -2 * self.nu * e * np.ones_like(s), -(1 + s) * e, -s * e])
+        nu_e = -2 * self.nu * e
+        return StressRows(((s - 1) * e, nu_e, -(1 + s) * e, -s * e),
+                          ((s - 2) * e, nu_e, -s * e, (1 - s) * e),
+                          (e, -e))
 
 
-def stresses_normal(p: np.ndarray, grid: Grid, depths, frf, pad: int = 4) -> np.ndarray:
-    """Six stress components [Pa] under the cell pressures ``p`` [Pa] at each depth [m].
+def stresses_surface(grid: Grid, depths, frf, p: np.ndarray | None = None,
+                     qx: np.ndarray | None = None, qy: np.ndarray | None = None,
+                     pad: int = 4) -> np.ndarray:
+    """Six stress components [Pa] under surface tractions at each depth [m].
 
     Parameters
     ----------
-    p
-        Pressure on ``grid`` (shape ``grid.shape``), compressive positive.
     grid
         The FFT grid (cell ``(ny//2, nx//2)`` centred on the origin).
     depths
         Depths ``z >= 0`` [m].
     frf
         :class:`HomogeneousStressFRF` or :class:`CoatedStressFRF`.
+    p, qx, qy
+        Cell pressure (compressive positive) and tangential tractions applied to the body in
+        ``+x``, ``+y`` [Pa] (shape ``grid.shape``; ``None`` for none): ``sigma_zz(0) = -p``,
+        ``sigma_xz(0) = -qx``, ``sigma_yz(0) = -qy``.
     pad
         Period of the FFT in domain widths (>= 2: zero padding, non-periodic).
 
@@ -191,46 +247,76 @@ def stresses_normal(p: np.ndarray, grid: Grid, depths, frf, pad: int = 4) -> np.
     depths = np.atleast_1d(np.asarray(depths, dtype=float))
     if np.any(~np.isfinite(depths)) or np.any(depths < 0):
         raise CoatHertzError(f"depths must be finite and >= 0 [m], got {depths!r}")
-    if pad < 2:
+    if not isinstance(pad, int | np.integer) or pad < 2:
         raise CoatHertzError(f"pad must be an integer >= 2, got {pad!r}")
     ny, nx = grid.shape
-    if p.shape != (ny, nx):
-        raise CoatHertzError(f"pressure shape {p.shape} does not match the grid {(ny, nx)}")
+    for name, v in (("p", p), ("qx", qx), ("qy", qy)):
+        if v is not None and np.shape(v) != (ny, nx):
+            raise CoatHertzError(f"{name} shape {np.shape(v)} does not match the grid {(ny, nx)}")
     Ny, Nx = pad * ny, pad * nx
     kx = 2 * np.pi * sfft.rfftfreq(Nx, grid.dx)[None, :]
     ky = 2 * np.pi * sfft.fftfreq(Ny, grid.dy)[:, None]
     w = np.hypot(kx, ky)
     safe = np.where(w > 0, w, 1.0)
-    c, s = kx / safe, ky / safe
-    c = np.where(w > 0, c, np.sqrt(0.5))
-    s = np.where(w > 0, s, np.sqrt(0.5))
+    c = np.where(w > 0, kx / safe, np.sqrt(0.5))
+    s = np.where(w > 0, ky / safe, np.sqrt(0.5))
     cell = np.sinc(kx * grid.dx / (2 * np.pi)) * np.sinc(ky * grid.dy / (2 * np.pi))
-    P = sfft.rfft2(p, s=(Ny, Nx)) * cell
-    # odd responses are not representable at the Nyquist frequencies: set to zero there
-    odd_x = np.ones_like(w)
+    # Nyquist lines carry odd responses that a real field cannot hold: dropped for all
+    keep = np.ones_like(w)
     if Nx % 2 == 0:
-        odd_x[:, -1] = 0.0
-    odd_y = np.ones_like(w)
+        keep[:, -1] = 0.0
     if Ny % 2 == 0:
-        odd_y[Ny // 2, :] = 0.0
-    x = frf.coefficients(w)
+        keep[Ny // 2, :] = 0.0
+    cell = cell * keep
+
+    def spectrum(v):
+        return None if v is None else sfft.rfft2(v, s=(Ny, Nx)) * cell
+
+    P, Qx, Qy = spectrum(p), spectrum(qx), spectrum(qy)
+    zero = np.zeros_like(w)
+    Qk = (c * (zero if Qx is None else Qx) + s * (zero if Qy is None else Qy))
+    Qp = (-s * (zero if Qx is None else Qx) + c * (zero if Qy is None else Qy))
+    tangential = Qx is not None or Qy is not None
+    coef = frf.coefficients(w)
     out = np.empty((depths.size, 6, ny, nx))
     for i, z in enumerate(depths):
-        Skk, Spp, Szz, Skz = frf.at(w, z, x)
-        mean = 0.5 * (Skk[0, 0] + Spp[0, 0])
-        Skk, Spp = Skk.copy(), Spp.copy()
-        Skk[0, 0] = Spp[0, 0] = mean
+        rows = frf.at(w, z, coef)
+        Tkk = Tpp = Tzz = Tkz = Tpz = Tkp = 0.0
+        if P is not None:
+            kk, pp, zz, kz = rows.normal
+            kk, pp = kk.copy(), pp.copy()
+            kk[0, 0] = pp[0, 0] = 0.5 * (kk[0, 0] + pp[0, 0])  # angular mean at w = 0
+            Tkk, Tpp, Tzz, Tkz = kk * P, pp * P, zz * P, -1j * kz * P
+        if tangential:
+            kk, pp, zz, kz = rows.tangential
+            odd = -1j * np.where(w > 0, 1.0, 0.0)  # odd responses vanish at w = 0
+            Tkk = Tkk + odd * kk * Qk
+            Tpp = Tpp + odd * pp * Qk
+            Tzz = Tzz + odd * zz * Qk
+            Tkz = Tkz - kz * Qk
+            kp, pz = rows.antiplane
+            Tpz = pz * Qp
+            Tkp = 1j * kp * Qp * np.where(w > 0, 1.0, 0.0)
         comps = (
-            c * c * Skk + s * s * Spp,
-            s * s * Skk + c * c * Spp,
-            Szz,
-            -1j * s * Skz * odd_y,
-            -1j * c * Skz * odd_x,
-            c * s * (Skk - Spp) * odd_x * odd_y,
+            c * c * Tkk + s * s * Tpp - 2 * c * s * Tkp,
+            s * s * Tkk + c * c * Tpp + 2 * c * s * Tkp,
+            Tzz,
+            s * Tkz + c * Tpz,
+            c * Tkz - s * Tpz,
+            c * s * (Tkk - Tpp) + (c * c - s * s) * Tkp,
         )
-        for j, frf_j in enumerate(comps):
-            out[i, j] = sfft.irfft2(P * frf_j, s=(Ny, Nx))[:ny, :nx]
+        for j, spec in enumerate(comps):
+            if np.ndim(spec) == 0:
+                out[i, j] = 0.0
+            else:
+                out[i, j] = sfft.irfft2(spec, s=(Ny, Nx))[:ny, :nx]
     return out
+
+
+def stresses_normal(p: np.ndarray, grid: Grid, depths, frf, pad: int = 4) -> np.ndarray:
+    """Six stress components [Pa] under the cell pressure ``p`` alone (see
+    :func:`stresses_surface`)."""
+    return stresses_surface(grid, depths, frf, p=p, pad=pad)
 
 
 def von_mises(sig: np.ndarray, axis: int = -3) -> np.ndarray:
