@@ -50,6 +50,11 @@ so the images add ``-W T1 L3 / (4 pi)`` to each of ``sigma_xx, sigma_yy`` with
 solution of a rigid sphere on steel (n = 128, domain 2.5a, pad 4) against Huber's field: the
 error at z = 2a falls from 0.75 % to 0.04 % of p0 (with pad 2 it is still 1.4 %: the
 expansion needs ``z << P``). The ``cos 2 th / r^2`` part cancels exactly only on a square period.
+The ``w = 0`` term and
+``T1`` are the ``w -> 0`` limits, i.e. the field at scales far beyond the coating: right
+while ``h`` is small against the period ``P``; for a coating thicker than ``P`` they carry
+the substrate's (or rigid base's) far field into a field that has not felt it yet (measured:
+0.3 to 0.5 % of p0 for h = 100a on a rigid base, P = 16a).
 
 Accuracy near the surface
 -------------------------
