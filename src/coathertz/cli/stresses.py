@@ -1,0 +1,80 @@
+"""``coathertz stresses CASE``: stresses inside the bodies and what designers read from them."""
+
+from __future__ import annotations
+
+import argparse
+
+from coathertz.cli._common import add_case_arguments
+
+NAME = "stresses"
+HELP = "stress field inside the coated body (FFT) and its maxima (von Mises, tension, interface)"
+METHODS = ("fft",)  # axisym and fem stresses: not exposed yet
+
+
+def _depths(text: str) -> list[float]:
+    try:
+        return [float(v) * 1e-6 for v in text.split(",") if v.strip()]
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"expected comma-separated depths in um, got {text!r}") from None
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    from coathertz.fft.frf import INTERFACES
+
+    add_case_arguments(parser)
+    parser.add_argument("--method", default="fft", choices=METHODS, help="(default: fft)")
+    parser.add_argument("--grid", type=int, default=128, metavar="N", help="FFT cells per side")
+    parser.add_argument("--interface", default=INTERFACES[0], choices=INTERFACES)
+    parser.add_argument("--mu", type=float, default=0.0, metavar="M",
+                        help="full sliding friction q = mu p along x on body2 (0 <= mu <= 1)")
+    parser.add_argument("--depths", type=_depths, default=None, metavar="Z1,Z2,...",
+                        help="depths below body2's surface [um] (default: through the coating, "
+                             "both sides of its interface, down to 3a)")
+    parser.add_argument("--json", action="store_true", help="machine-readable output")
+
+
+def run(args: argparse.Namespace) -> int:
+    import math
+
+    from coathertz.cli._common import case_from_args, format_table, list_examples, to_json
+    from coathertz.errors import CoatHertzError
+    from coathertz.fft.method import FFTMethod
+    from coathertz.fft.stresses import contact_stresses
+    from coathertz.stress_summary import summarise
+
+    if args.list_examples:
+        return list_examples()
+    if not (math.isfinite(args.mu) and 0 <= args.mu <= 1):
+        raise CoatHertzError(f"--mu: friction coefficient must be in [0, 1], got {args.mu!r}")
+    case = case_from_args(args)
+    body = case.body2
+    if args.depths is not None:
+        bottom = body.coating.h if (body.coating and body.material.is_rigid) else math.inf
+        bad = [z for z in args.depths if not (0 <= z <= bottom)]
+        if bad:
+            raise CoatHertzError(
+                f"--depths: body2 depth {bad[0] * 1e6:g} um outside the body "
+                f"(valid: 0 to {bottom * 1e6:g} um)")
+    res = FFTMethod(n=args.grid, interface=args.interface).solve(case)
+    kw = {"mu": args.mu, "interface": args.interface}
+    field = contact_stresses(case, res, depths=args.depths, **kw)
+    inter = None
+    if body.coating is not None:
+        inter = contact_stresses(case, res, depths=[body.coating.h], **kw).sigma[0]
+    summary = summarise(body, field.x, field.y, field.z, field.sigma, res.p0, inter)
+    if args.json:
+        print(to_json({"method": args.method, "mu": args.mu, "a": res.a, "p0": res.p0,
+                       "depths": field.z.tolist(), **summary}))
+        return 0
+    print(f"coathertz stresses: {case.label or 'case'}, FFT {args.grid}^2, {field.z.size} depths,"
+          f" mu = {args.mu:g}, a = {res.a * 1e6:.4g} um, p0 = {res.p0 / 1e6:.5g} MPa")
+    rows = []
+    for key, e in summary.items():
+        if e is None:
+            rows.append([key, "-", "-", "-"])
+            continue
+        at = ", ".join(f"{v * 1e6:.3g}" for v in e["at"])
+        rows.append([key, f"{e['value'] / 1e6:.5g}", f"{e['over_p0']:.4f}", at])
+    print(format_table(["", "value [MPa]", "/ p0", "at x, y, z [um]"], rows))
+    return 0

@@ -1,0 +1,446 @@
+"""Stresses inside a (coated) half-space under a normal surface pressure, by FFT per depth plane.
+
+Transfer solution per wavenumber
+--------------------------------
+A pressure ``P cos(k x)`` (``sigma_zz(0) = -P``, ``sigma_xz(0) = 0``) gives a plane-strain
+field in ``(x, z)``. With the Papkovich--Neuber potentials of :mod:`coathertz.fft.frf`,
+``2 G u = grad(phi + z psi) - 4 (1 - nu) psi e_z``, ``phi = f(z) cos kx``,
+``psi = g(z) cos kx``, the divergence is ``2 G div u = -2 (1 - 2 nu) g'`` so that
+``lambda div u = -2 nu g'`` and (k = 1)::
+
+    sigma_xx = (-(f + z g) - 2 nu g')            cos kx
+    sigma_yy = -2 nu g'                          cos kx     (plane strain, y normal to k)
+    sigma_zz = (f + z g - 2 (1 - nu) g')         cos kx
+    sigma_xz = -(f' + z g' - (1 - 2 nu) g)       sin kx
+
+With the bounded exponentials of :func:`coathertz.fft.frf.layer_factor_tm`
+(``f = A e^{-z} + C e^{-(h-z)}``, ``g = B e^{-z} + D e^{-(h-z)}`` in the coating,
+``A2 e^{-(z-h)}``, ``B2 e^{-(z-h)}`` in the substrate) every basis value is a product of a
+polynomial in ``z`` and an exponential ``<= 1``: no growing exponential appears. The six (or
+four, rigid substrate) coefficients depend on ``t = w h`` only and are solved once per
+wavenumber ``w = |k|``; the stresses at depth ``z`` are the basis rows at ``w z`` times them.
+Homogeneous half-space (no coating): ``A = 1 - 2 nu``, ``B = -1``, i.e. with ``s = w z``::
+
+    S_kk = (s - 1) e^{-s},  S_pp = -2 nu e^{-s},  S_zz = -(1 + s) e^{-s},  S_kz = -s e^{-s}
+
+(the transform of Boussinesq's field, Johnson 1985 sec. 3.2).
+
+3-D field and FFT
+-----------------
+For a wave vector ``k = w (cos th, sin th)`` the field is the plane-strain one along
+``k``, rotated: ``sigma_xx = c^2 S_kk + s^2 S_pp``, ``sigma_yy = s^2 S_kk + c^2 S_pp``,
+``sigma_xy = c s (S_kk - S_pp)``, ``sigma_xz = -i c S_kz``, ``sigma_yz = -i s S_kz``,
+``sigma_zz = S_zz`` (``sin kx = Re(-i e^{ikx})``). The cell pressures (piecewise constant,
+transform ``sinc(kx dx/2) sinc(ky dy/2)``) are zero padded to ``pad`` times the domain in each
+direction and multiplied by these responses per depth plane. The responses are bounded at
+``w = 0``; their direction-dependent limit there (``S_kk -> -1``, ``S_pp -> -2 nu`` on the
+homogeneous body) is replaced by its angular mean, which is what a circular truncation of the
+spectrum sees. Periodic images of the kernel lie ``pad - 1`` domain widths away; the
+``1/r^2`` part of the lateral stresses has a ``cos 2 th`` angular dependence whose images
+cancel at the centre on a square period, but the trace ``sigma_xx + sigma_yy`` decays like
+``z / r^3`` and its images shift the lateral stresses uniformly by about
+``-(1 + nu) W z 9.03 / (2 pi P^3)`` (``P`` the period, 9.03 the lattice sum of ``|n|^-3``):
+0.75 % of p0 at z = a with ``pad = 2`` on a 4a domain, 0.1 % with the default ``pad = 4``
+(measured in the tests against Huber's closed form). This shift is removed: the
+trace response ``S_kk + S_pp = T0 + T1(z) w + O(w^2)`` has a term linear in ``|k|`` whose
+plane transform is the far field ``-W T1 / (2 pi r^3)`` (Boussinesq: ``T1 = 2 (1 + nu) z``),
+so the images add ``-W T1 L3 / (4 pi)`` to each of ``sigma_xx, sigma_yy`` with
+``L3 = sum' |(i Px, j Py)|^-3`` the lattice sum; :func:`stresses_surface` subtracts it
+(``T1`` by a finite difference of the responses at ``w = eps, 2 eps``). Measured on the FFT
+solution of a rigid sphere on steel (n = 128, domain 2.5a, pad 4) against Huber's field: the
+error at z = 2a falls from 0.75 % to 0.04 % of p0 (with pad 2 it is still 1.4 %: the
+expansion needs ``z << P``). The ``cos 2 th / r^2`` part cancels exactly only on a square period.
+The ``w = 0`` term and
+``T1`` are the ``w -> 0`` limits, i.e. the field at scales far beyond the coating: right
+while ``h`` is small against the period ``P``; for a coating thicker than ``P`` they carry
+the substrate's (or rigid base's) far field into a field that has not felt it yet (measured:
+0.3 to 0.5 % of p0 for h = 100a on a rigid base, P = 16a).
+
+Accuracy near the surface
+-------------------------
+The cell pressures are piecewise constant, so within a few cells of the surface the field
+sees the staircase of the pressure at the contact edge. Measured against Huber's field
+(Hertz pressure at the cell centres, domain 4a): max error 2.5 % / 1.6 % / 0.75 % / 0.26 % of
+p0 at z = 0.025 / 0.05 / 0.1 / 0.2 a on 128^2 and 1.2 % / 0.59 % / 0.23 % at 0.025 / 0.05 /
+0.1 a on 256^2 (about first order in dx near the edge); on the surface itself inside the
+contact, 0.8 % (128^2) and 0.16 % (256^2). Below about 6 cells the error is < 0.3 % of p0.
+
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import fft as sfft
+
+from coathertz.case import ContactCase
+from coathertz.errors import CoatHertzError
+from coathertz.fft.frf import Layer, _columns
+from coathertz.fft.grid import Grid
+from coathertz.materials import Body
+from coathertz.results import ContactResult
+
+COMPONENTS = ("xx", "yy", "zz", "yz", "xz", "xy")  # Voigt order of the last-but-two axis
+T_MIN = 1e-6  # smallest w h solved (the 6 x 6 system degenerates at t = 0; w = 0 only)
+
+
+def _rows_stress(z, nu, E, kind):
+    """(S_kk, S_pp, S_zz, S_kz) of one basis function at scaled depth ``z`` (k = 1)."""
+    if kind == "A":
+        return (-E, 0.0 * E, E, E)
+    if kind == "B":
+        return ((-z + 2 * nu) * E, 2 * nu * E, (z + 2 * (1 - nu)) * E, (z + (1 - 2 * nu)) * E)
+    if kind == "C":
+        return (-E, 0.0 * E, E, -E)
+    if kind == "D":
+        return ((-z - 2 * nu) * E, -2 * nu * E, (z - 2 * (1 - nu)) * E, (-z + (1 - 2 * nu)) * E)
+    raise AssertionError(kind)
+
+
+@dataclass(frozen=True)
+class StressRows:
+    """Real response rows at one depth, per wavenumber (see the module docstring).
+
+    ``normal``: ``(kk, pp, zz, kz)`` under ``P cos kx`` (sigma_kz ~ sin kx);
+    ``tangential``: the same rows under ``Q cos kx`` along ``k`` (sigma_kz ~ -cos kx, the others
+    ~ sin kx); ``antiplane``: ``(kp, pz)`` under ``Q cos kx`` normal to ``k``
+    (sigma_pz = pz cos kx, sigma_kp = -kp sin kx).
+    """
+
+    normal: tuple
+    tangential: tuple
+    antiplane: tuple
+
+
+@dataclass(frozen=True)
+class CoatedStressFRF:
+    """Stress responses of a coating of thickness ``h`` [m] on its substrate (``layer``)."""
+
+    layer: Layer
+    h: float
+
+    def __post_init__(self) -> None:
+        if not (np.isfinite(self.h) and self.h > 0):
+            raise CoatHertzError(f"coating thickness h must be finite and > 0 [m], got {self.h!r}")
+
+    def coefficients(self, w: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """In-plane coefficients ``(A, B, C, D, A2, B2)`` for the normal and the tangential load
+        (shape ``w.shape + (6, 2)``) and antiplane ``(alpha, beta, gamma)`` (``w.shape + (3,)``).
+        """
+        coating, substrate = self.layer.coating, self.layer.substrate
+        interface = self.layer.interface
+        t = np.maximum(np.asarray(w, dtype=float).ravel() * self.h, T_MIN)
+        n = t.size
+        nu_c = coating.nu
+        one, zero = np.ones(n), np.zeros(n)
+        eh = np.exp(-t)
+        L0 = [_columns(zero, nu_c, one if k in "AB" else eh, k) for k in "ABCD"]
+        Lh = [_columns(t, nu_c, eh if k in "AB" else one, k) for k in "ABCD"]
+        M = np.zeros((n, 6, 6))
+        rhs = np.zeros((n, 6, 2))
+        for j in range(4):
+            M[:, 0, j] = L0[j][2]
+            M[:, 1, j] = L0[j][3]
+        rhs[:, 0, 0] = -1.0  # normal: sigma_zz(0) = -P
+        rhs[:, 1, 1] = 1.0  # tangential: row kz(0) = Q, i.e. sigma_xz(0) = -Q cos kx
+        if substrate.is_rigid:
+            M[:, 4, 4] = M[:, 5, 5] = 1.0
+            rows = (0, 1) if interface == "bonded" else (1, 3)
+            for r, q in zip((2, 3), rows, strict=True):
+                for j in range(4):
+                    M[:, r, j] = Lh[j][q]
+        else:
+            mu = coating.G / substrate.G
+            S = [_columns(t, substrate.nu, one, k) for k in "AB"]
+            scale = (mu, mu, 1.0, 1.0)
+            quantities = (0, 1, 2, 3) if interface == "bonded" else (1, 2)
+            r = 2
+            for q in quantities:
+                for j in range(4):
+                    M[:, r, j] = Lh[j][q]
+                for j in range(2):
+                    M[:, r, 4 + j] = -scale[q] * S[j][q]
+                r += 1
+            if interface == "frictionless":
+                for j in range(4):
+                    M[:, 4, j] = Lh[j][3]
+                for j in range(2):
+                    M[:, 5, 4 + j] = S[j][3]
+        x = np.linalg.solve(M, rhs)
+        # antiplane: U = a e^{-kz} + b e^{-k(h-z)} (coating), c e^{-k(z-h)} (substrate);
+        # alpha = G_c k a / Q etc.: -alpha + beta e^{-t} = -1 (sigma_pz(0) = -Q), and
+        # beta = rho alpha e^{-t}, rho = (1 - r)/(1 + r), r = G_s/G_c (bonded; -1 on a rigid
+        # substrate) or rho = 1 (frictionless: sigma_pz(h) = 0); gamma = alpha e^{-t} + beta.
+        if interface == "frictionless":
+            rho = 1.0
+        elif substrate.is_rigid:
+            rho = -1.0
+        else:
+            r_g = substrate.G / coating.G
+            rho = (1 - r_g) / (1 + r_g)
+        alpha = 1.0 / (1.0 - rho * eh * eh)
+        beta = rho * alpha * eh
+        gamma = np.zeros_like(t) if interface == "frictionless" else alpha * eh + beta
+        xa = np.stack([alpha, beta, gamma], axis=-1)
+        shape = np.shape(w)
+        return x.reshape((*shape, 6, 2)), xa.reshape((*shape, 3))
+
+    def at(self, w: np.ndarray, z: float, coef=None) -> StressRows:
+        """Response rows at depth ``z`` [m].
+
+        On the interface ``z = h`` the coating's side is returned; a rigid substrate has no
+        stresses below ``h`` (raises).
+        """
+        w = np.maximum(np.asarray(w, dtype=float), T_MIN / self.h)  # as solved
+        x, xa = self.coefficients(w) if coef is None else coef
+        s, sh = w * z, w * self.h
+        if z <= self.h:
+            ea, ec = np.exp(-s), np.exp(-(sh - s))
+            rows = [_rows_stress(s, self.layer.coating.nu, ea if k in "AB" else ec, k)
+                    for k in "ABCD"]
+            cols = range(4)
+            a, b = xa[..., 0], xa[..., 1]
+            anti = (a * ea + b * ec, -a * ea + b * ec)
+        else:
+            if self.layer.substrate.is_rigid:
+                raise CoatHertzError(
+                    f"depth z = {z:g} m lies in the rigid substrate "
+                    f"(z must be in [0, h = {self.h:g}] m)"
+                )
+            e = np.exp(-(s - sh))
+            rows = [None] * 4 + [_rows_stress(s, self.layer.substrate.nu, e, k) for k in "AB"]
+            cols = range(4, 6)
+            r_g = self.layer.substrate.G / self.layer.coating.G
+            g = xa[..., 2] * r_g * e
+            anti = (g, -g)
+
+        def combine(m: int) -> tuple:
+            return tuple(sum(rows[j][q] * x[..., j, m] for j in cols) for q in range(4))
+
+        return StressRows(combine(0), combine(1), anti)
+
+
+@dataclass(frozen=True)
+class HomogeneousStressFRF:
+    """Stress responses of a homogeneous half-space of Poisson's ratio ``nu`` (closed form).
+
+    Normal load: ``A = 1 - 2 nu, B = -1``; tangential load along ``k``: ``A = 2 (1 - nu),
+    B = -1``, rows ``(s - 2, -2 nu, -s, 1 - s) e^{-s}``; antiplane: ``U = Q e^{-kz}/(G k)``.
+    """
+
+    nu: float
+
+    def coefficients(self, w: np.ndarray) -> None:
+        return None
+
+    def at(self, w: np.ndarray, z: float, coef=None) -> StressRows:
+        s = np.asarray(w, dtype=float) * z
+        e = np.exp(-s)
+        nu_e = -2 * self.nu * e
+        return StressRows(((s - 1) * e, nu_e, -(1 + s) * e, -s * e),
+                          ((s - 2) * e, nu_e, -s * e, (1 - s) * e),
+                          (e, -e))
+
+
+def stresses_surface(grid: Grid, depths, frf, p: np.ndarray | None = None,
+                     qx: np.ndarray | None = None, qy: np.ndarray | None = None,
+                     pad: int = 4) -> np.ndarray:
+    """Six stress components [Pa] under surface tractions at each depth [m].
+
+    Parameters
+    ----------
+    grid
+        The FFT grid (cell ``(ny//2, nx//2)`` centred on the origin).
+    depths
+        Depths ``z >= 0`` [m].
+    frf
+        :class:`HomogeneousStressFRF` or :class:`CoatedStressFRF`.
+    p, qx, qy
+        Cell pressure (compressive positive) and tangential tractions applied to the body in
+        ``+x``, ``+y`` [Pa] (shape ``grid.shape``; ``None`` for none): ``sigma_zz(0) = -p``,
+        ``sigma_xz(0) = -qx``, ``sigma_yz(0) = -qy``.
+    pad
+        Period of the FFT in domain widths (>= 2: zero padding, non-periodic).
+
+    Returns
+    -------
+    ndarray
+        Shape ``(len(depths), 6, ny, nx)``, components in :data:`COMPONENTS` order, at the
+        cell centres.
+    """
+    depths = np.atleast_1d(np.asarray(depths, dtype=float))
+    if np.any(~np.isfinite(depths)) or np.any(depths < 0):
+        raise CoatHertzError(f"depths must be finite and >= 0 [m], got {depths!r}")
+    if not isinstance(pad, int | np.integer) or pad < 2:
+        raise CoatHertzError(f"pad must be an integer >= 2, got {pad!r}")
+    ny, nx = grid.shape
+    for name, v in (("p", p), ("qx", qx), ("qy", qy)):
+        if v is not None and np.shape(v) != (ny, nx):
+            raise CoatHertzError(f"{name} shape {np.shape(v)} does not match the grid {(ny, nx)}")
+    Ny, Nx = pad * ny, pad * nx
+    kx = 2 * np.pi * sfft.rfftfreq(Nx, grid.dx)[None, :]
+    ky = 2 * np.pi * sfft.fftfreq(Ny, grid.dy)[:, None]
+    w = np.hypot(kx, ky)
+    safe = np.where(w > 0, w, 1.0)
+    c = np.where(w > 0, kx / safe, np.sqrt(0.5))
+    s = np.where(w > 0, ky / safe, np.sqrt(0.5))
+    cell = np.sinc(kx * grid.dx / (2 * np.pi)) * np.sinc(ky * grid.dy / (2 * np.pi))
+    # Nyquist lines carry odd responses that a real field cannot hold: dropped for all
+    keep = np.ones_like(w)
+    if Nx % 2 == 0:
+        keep[:, -1] = 0.0
+    if Ny % 2 == 0:
+        keep[Ny // 2, :] = 0.0
+    cell = cell * keep
+
+    def spectrum(v):
+        return None if v is None else sfft.rfft2(v, s=(Ny, Nx)) * cell
+
+    P, Qx, Qy = spectrum(p), spectrum(qx), spectrum(qy)
+    zero = np.zeros_like(w)
+    Qk = (c * (zero if Qx is None else Qx) + s * (zero if Qy is None else Qy))
+    Qp = (-s * (zero if Qx is None else Qx) + c * (zero if Qy is None else Qy))
+    tangential = Qx is not None or Qy is not None
+    coef = frf.coefficients(w)
+    Px, Py = Nx * grid.dx, Ny * grid.dy
+    W = 0.0 if P is None else float(np.real(P[0, 0])) * grid.dx * grid.dy  # load [N]
+    eps = 1e-4 / max(Px, Py)
+    lattice = _lattice_sum3(Px, Py)
+    out = np.empty((depths.size, 6, ny, nx))
+    for i, z in enumerate(depths):
+        rows = frf.at(w, z, coef)
+        Tkk = Tpp = Tzz = Tkz = Tpz = Tkp = 0.0
+        if P is not None:
+            kk, pp, zz, kz = rows.normal
+            kk, pp = kk.copy(), pp.copy()
+            kk[0, 0] = pp[0, 0] = 0.5 * (kk[0, 0] + pp[0, 0])  # angular mean at w = 0
+            Tkk, Tpp, Tzz, Tkz = kk * P, pp * P, zz * P, -1j * kz * P
+        if tangential:
+            kk, pp, zz, kz = rows.tangential
+            odd = -1j * np.where(w > 0, 1.0, 0.0)  # odd responses vanish at w = 0
+            Tkk = Tkk + odd * kk * Qk
+            Tpp = Tpp + odd * pp * Qk
+            Tzz = Tzz + odd * zz * Qk
+            Tkz = Tkz - kz * Qk
+            kp, pz = rows.antiplane
+            Tpz = pz * Qp
+            Tkp = 1j * kp * Qp * np.where(w > 0, 1.0, 0.0)
+        comps = (
+            c * c * Tkk + s * s * Tpp - 2 * c * s * Tkp,
+            s * s * Tkk + c * c * Tpp + 2 * c * s * Tkp,
+            Tzz,
+            s * Tkz + c * Tpz,
+            c * Tkz - s * Tpz,
+            c * s * (Tkk - Tpp) + (c * c - s * s) * Tkp,
+        )
+        # pruned inverse: complex transform along y, keep the ny rows of the body, then
+        # complex-to-real along x (the same as irfft2 cropped, about half the work)
+        full = np.stack([np.broadcast_to(spec, w.shape) for spec in comps])
+        rows_y = sfft.ifft(full, axis=1)[:, :ny]
+        out[i] = sfft.irfft(rows_y, n=Nx, axis=2)[:, :, :nx]
+        if W:
+            we = np.array([eps, 2 * eps])
+            n_kk, n_pp = frf.at(we, z).normal[:2]
+            T1 = ((n_kk[1] + n_pp[1]) - (n_kk[0] + n_pp[0])) / eps
+            shift = -W * T1 * lattice / (4 * np.pi)  # images' share of sigma_xx, sigma_yy
+            out[i, 0] -= shift
+            out[i, 1] -= shift
+    return out
+
+
+def _lattice_sum3(Px: float, Py: float, m: int = 64) -> float:
+    """``sum over (i, j) != 0 of |(i Px, j Py)|^-3``, direct to ``|i|, |j| <= m`` plus the
+    integral of the rest (``2 pi / (Px Py R)`` beyond the radius ``R = m min(Px, Py)``)."""
+    i = np.arange(-m, m + 1)
+    r2 = (i[:, None] * Px) ** 2 + (i[None, :] * Py) ** 2
+    r2[m, m] = np.inf
+    inner = r2 <= (m * min(Px, Py)) ** 2
+    R = m * min(Px, Py)
+    return float(np.sum(r2[inner] ** -1.5) + 2 * np.pi / (Px * Py * R))
+
+
+def stresses_normal(p: np.ndarray, grid: Grid, depths, frf, pad: int = 4) -> np.ndarray:
+    """Six stress components [Pa] under the cell pressure ``p`` alone (see
+    :func:`stresses_surface`)."""
+    return stresses_surface(grid, depths, frf, p=p, pad=pad)
+
+
+def von_mises(sig: np.ndarray, axis: int = -3) -> np.ndarray:
+    """Von Mises equivalent stress of a Voigt-ordered stress array (components on ``axis``)."""
+    xx, yy, zz, yz, xz, xy = np.moveaxis(sig, axis, 0)
+    return np.sqrt(0.5 * ((xx - yy) ** 2 + (yy - zz) ** 2 + (zz - xx) ** 2)
+                   + 3.0 * (yz**2 + xz**2 + xy**2))
+
+
+@dataclass(frozen=True)
+class StressField:
+    """Stresses [Pa] in one body of an FFT contact solution.
+
+    ``sigma`` has shape ``(len(z), 6, len(y), len(x))`` (:data:`COMPONENTS` order); ``x, y``
+    [m] are the cell centres, ``z`` [m] the depths below the body's surface.
+    """
+
+    x: np.ndarray
+    y: np.ndarray
+    z: np.ndarray
+    sigma: np.ndarray
+    meta: dict
+
+
+def body_frf(body: Body, interface: str = "bonded"):
+    """The stress responses of ``body``: homogeneous or coated (one coating)."""
+    if body.material.is_rigid and body.coating is None:
+        raise CoatHertzError("the body is rigid: it has no stress field")
+    if body.coating is None:
+        return HomogeneousStressFRF(body.material.nu)
+    return CoatedStressFRF(Layer(body.coating.material, body.material, interface), body.coating.h)
+
+
+def default_depths(body: Body, a: float) -> np.ndarray:
+    """Depths [m]: dense in the coating (16 steps), both sides of its interface, and to 3a.
+
+    Homogeneous: 0 to a in 40 steps (the Hertz maximum at 0.48a), a to 3a in 20. Coated
+    (thickness h): 0 to h in 16 steps, ``h`` (coating side) and ``h (1 + 1e-9)`` (substrate
+    side), then geometric steps to ``max(3a, 2h)`` (or to h on a rigid substrate).
+    """
+    if body.coating is None:
+        return np.concatenate([np.linspace(0, a, 41), np.linspace(a, 3 * a, 21)[1:]])
+    h = body.coating.h
+    top = np.linspace(0, h, 17)
+    if body.material.is_rigid:
+        return top
+    deep = np.geomspace(h * (1 + 1e-9), max(3 * a, 2 * h), 32)
+    return np.concatenate([top, deep])
+
+
+def contact_stresses(case: ContactCase, result: ContactResult, *, body: int = 2,
+                     depths=None, mu: float = 0.0, direction: float = 0.0,
+                     interface: str = "bonded", pad: int = 4) -> StressField:
+    """Stress field in ``body`` (1 or 2) from an FFT solution kept with its fields.
+
+    ``mu`` > 0 adds full sliding friction ``q = mu p`` acting on the body in the direction
+    ``direction`` [rad] from x (Coulomb, no normal-tangential coupling in the pressure).
+    """
+    if body not in (1, 2):
+        raise CoatHertzError(f"body must be 1 or 2, got {body!r}")
+    if not (np.isfinite(mu) and 0 <= mu <= 1):
+        raise CoatHertzError(f"friction coefficient mu must be in [0, 1], got {mu!r}")
+    if "pressure" not in result.fields:
+        raise CoatHertzError("the FFT result has no pressure field (solve with keep_fields=True)")
+    b = case.body1 if body == 1 else case.body2
+    frf = body_frf(b, interface)
+    x, y, p = result.fields["x"], result.fields["y"], result.fields["pressure"]
+    grid = Grid(len(x), len(y), float(x[1] - x[0]), float(y[1] - y[0]))
+    z = default_depths(b, result.a) if depths is None else np.asarray(depths, dtype=float)
+    if b.coating is not None and b.material.is_rigid and np.any(z > b.coating.h):
+        raise CoatHertzError(
+            f"body{body}: depths must be in [0, h = {b.coating.h:g}] m on a rigid substrate")
+    q = mu * p if mu > 0 else None
+    sig = stresses_surface(grid, z, frf, p=p,
+                           qx=None if q is None else np.cos(direction) * q,
+                           qy=None if q is None else np.sin(direction) * q, pad=pad)
+    meta = {"method": "fft", "body": body, "mu": mu, "direction": direction,
+            "interface": interface, "pad": pad, "grid": grid.describe(),
+            "coupling": "none (pressure from the frictionless normal solution)"}
+    return StressField(x, y, z, sig, meta)

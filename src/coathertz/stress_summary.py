@@ -1,0 +1,70 @@
+"""What designers read from a stress field (issue 18, scope 5): maxima with their locations.
+
+Method-independent: works on any field sampled on ``(z, component, y, x)`` in the Voigt order
+``xx, yy, zz, yz, xz, xy`` [Pa], positions in m. Tension is positive.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from coathertz.materials import Body
+
+
+def von_mises(sig: np.ndarray) -> np.ndarray:
+    """Von Mises stress of a ``(..., 6, ...)`` field with the components on axis 1."""
+    xx, yy, zz, yz, xz, xy = np.moveaxis(sig, 1, 0)
+    return np.sqrt(0.5 * ((xx - yy) ** 2 + (yy - zz) ** 2 + (zz - xx) ** 2)
+                   + 3.0 * (yz**2 + xz**2 + xy**2))
+
+
+def first_principal(sig: np.ndarray) -> np.ndarray:
+    """Largest principal stress (tension positive) of a ``(nz, 6, ny, nx)`` field."""
+    xx, yy, zz, yz, xz, xy = (sig[:, j] for j in range(6))
+    T = np.stack([np.stack([xx, xy, xz], -1), np.stack([xy, yy, yz], -1),
+                  np.stack([xz, yz, zz], -1)], -2)
+    return np.linalg.eigvalsh(T)[..., -1]
+
+
+def _entry(values: np.ndarray, mask: np.ndarray, x, y, z, p0: float) -> dict | None:
+    if not np.any(mask):
+        return None
+    v = np.where(mask, values, -np.inf)
+    k, j, i = np.unravel_index(np.argmax(v), v.shape)
+    val = float(v[k, j, i])
+    return {"value": val, "over_p0": val / p0, "at": [float(x[i]), float(y[j]), float(z[k])]}
+
+
+def summarise(body: Body, x, y, z, sigma: np.ndarray, p0: float,
+              interface_sigma: np.ndarray | None = None) -> dict:
+    """The maxima of issue 18 (scope 5), each ``{value [Pa], over_p0, at: [x, y, z] m}``.
+
+    ``interface_sigma`` (``(6, ny, nx)``): the coating side of the interface ``z = h``, for
+    the interface shear ``sqrt(sigma_xz^2 + sigma_yz^2)`` and normal (tension) stress.
+    Entries that do not apply (no coating) are ``None``.
+    """
+    z = np.asarray(z, dtype=float)
+    vm = von_mises(sigma)
+    s1 = first_principal(sigma)
+    shape = vm.shape
+    depth = np.broadcast_to(z[:, None, None], shape)
+    h = body.coating.h if body.coating is not None else None
+    in_coating = depth <= h if h is not None else np.zeros(shape, bool)
+    everywhere = np.ones(shape, bool)
+    out = {
+        "vm_max": _entry(vm, everywhere, x, y, z, p0),
+        "vm_max_coating": _entry(vm, in_coating, x, y, z, p0),
+        "vm_max_substrate": _entry(vm, ~in_coating, x, y, z, p0),
+        "tensile_max_surface": _entry(s1, depth == 0, x, y, z, p0),
+        "tensile_max": _entry(s1, in_coating if h is not None else everywhere, x, y, z, p0),
+        "interface_shear_max": None,
+        "interface_normal_max": None,
+    }
+    if h is not None and interface_sigma is not None:
+        zi = np.array([h])
+        shear = np.hypot(interface_sigma[3], interface_sigma[4])[None]
+        normal = interface_sigma[2][None]
+        ones = np.ones(shear.shape, bool)
+        out["interface_shear_max"] = _entry(shear, ones, x, y, zi, p0)
+        out["interface_normal_max"] = _entry(normal, ones, x, y, zi, p0)
+    return out
