@@ -20,12 +20,9 @@ def _depths(text: str) -> list[float]:
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    from coathertz.fft.frf import INTERFACES
-
-    add_case_arguments(parser)
+    add_case_arguments(parser)  # with --interface (the case's coating)
     parser.add_argument("--method", default="fft", choices=METHODS, help="(default: fft)")
     parser.add_argument("--grid", type=int, default=128, metavar="N", help="FFT cells per side")
-    parser.add_argument("--interface", default=INTERFACES[0], choices=INTERFACES)
     parser.add_argument("--mu", type=float, default=0.0, metavar="M",
                         help="full sliding friction q = mu p along x on body2 (0 <= mu <= 1)")
     parser.add_argument("--depths", type=_depths, default=None, metavar="Z1,Z2,...",
@@ -56,8 +53,8 @@ def run(args: argparse.Namespace) -> int:
             raise CoatHertzError(
                 f"--depths: body2 depth {bad[0] * 1e6:g} um outside the body "
                 f"(valid: 0 to {bottom * 1e6:g} um)")
-    res = FFTMethod(n=args.grid, interface=args.interface).solve(case)
-    kw = {"mu": args.mu, "interface": args.interface}
+    res = FFTMethod(n=args.grid).solve(case)
+    kw = {"mu": args.mu}
     field = contact_stresses(case, res, depths=args.depths, **kw)
     inter = None
     if body.coating is not None:

@@ -74,7 +74,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import fft as sfft
 
-from coathertz.case import ContactCase
+from coathertz.case import ContactCase, refuse_stack
 from coathertz.errors import CoatHertzError
 from coathertz.fft.frf import Layer, _columns
 from coathertz.fft.grid import Grid
@@ -390,6 +390,8 @@ class StressField:
 
 def body_frf(body: Body, interface: str = "bonded"):
     """The stress responses of ``body``: homogeneous or coated (one coating)."""
+    if body.is_stacked:
+        raise CoatHertzError("fft stresses: a layer stack is not modelled yet (one coating at most)")
     if body.material.is_rigid and body.coating is None:
         raise CoatHertzError("the body is rigid: it has no stress field")
     if body.coating is None:
@@ -428,7 +430,9 @@ def contact_stresses(case: ContactCase, result: ContactResult, *, body: int = 2,
         raise CoatHertzError(f"friction coefficient mu must be in [0, 1], got {mu!r}")
     if "pressure" not in result.fields:
         raise CoatHertzError("the FFT result has no pressure field (solve with keep_fields=True)")
+    refuse_stack(case, "fft stresses")
     b = case.body1 if body == 1 else case.body2
+    interface = case.interface_for(interface)  # a frictionless coating in the case is kept
     frf = body_frf(b, interface)
     x, y, p = result.fields["x"], result.fields["y"], result.fields["pressure"]
     grid = Grid(len(x), len(y), float(x[1] - x[0]), float(y[1] - y[0]))
