@@ -54,11 +54,15 @@ def test_fft_converges_to_exact_method(example):
 
 
 def test_thin_top_layer_of_a_stack_is_flagged():
-    """A stack's top layer thinner than a cell is flagged like a thin coating (meta and warning)."""
+    """A stack's top layer thinner than a cell is refined like a thin coating (within the memory
+    budget), and flagged (meta and warning) where the refinement is off."""
     c = load_example("tin_ti_on_steel")
     b = c.body2
     thin = c.replace(body2=Body(b.material, None, b.Rx, b.Ry,
                                 layers=(Layer(b.layers[0].material, 0.05e-6), b.layers[1])))
     with pytest.warns(UserWarning, match="cells thick"):
-        r = FFTMethod(n=64).solve(thin)
+        r = FFTMethod(n=64, layer_cells=None).solve(thin)
     assert r.meta["layer_cells"] < 0.05
+    r = FFTMethod(n=64).solve(thin)
+    ref = r.meta.get("layer_refinement")
+    assert r.meta["layer_cells"] >= 1.0 and ref["n"] > 64, ref

@@ -628,6 +628,8 @@ def _sub_cell_bound(case: ContactCase) -> str:
     (:data:`SUB_CELL_RADIUS_ERROR`): by the stiffest coating's modulus ratio; unmeasured on a
     rigid substrate and above :data:`SUB_CELL_MEASURED_E_MAX`."""
     coated = case.coated_bodies
+    if case.is_stacked or not coated:
+        return "an unmeasured amount (measured for single coatings, not for layer stacks)"
     if any(b.material.is_rigid for b in coated):
         return "an unmeasured amount (not measured on a rigid substrate)"
     E = max(b.modulus_ratio for b in coated)
