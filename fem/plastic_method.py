@@ -41,6 +41,7 @@ from coathertz.fem.plastic_contact import IncrementalContact, NewtonSettings, Pa
 from coathertz.fem.post import contact_radius, stress_report, surface_pressure
 from coathertz.hertz import hertz_circular
 from coathertz.materials import Material
+from coathertz.validity import A_OVER_R_MAX
 
 ModelValidityWarning = getattr(errors, "ModelValidityWarning", UserWarning)
 
@@ -51,6 +52,43 @@ PLASTIC_MESHES: dict[str, MeshSpec] = {
     "default": MeshSpec(n_a=20, r_fine=2.0, t_fine=1.5, growth=1.3, L=30.0),
     "fine": MeshSpec(n_a=32, r_fine=2.0, t_fine=1.5, growth=1.25, L=30.0),
 }
+
+
+#: The contact may reach this fraction of the candidate zone (the fine zone, ``r_fine * a_ref``)
+#: before the mesh is grown: the radius estimators read the gap of at least 4 free nodes beyond
+#: the contact edge, and the fine zone's elements must still resolve the edge.
+ZONE_FILL_MAX = 0.75
+#: Each growth rebuilds the mesh with ``a_ref`` enlarged by at least this factor.
+ZONE_GROWTH = 1.5
+
+
+class ContactZoneExceeded(CoatHertzError):
+    """The contact reached the edge of its candidate zone (raised inside the path, caught by
+    :func:`solve_plastic`, which grows the mesh or stops with one clear line)."""
+
+    def __init__(self, a_edge: float, r_zone: float, W: float) -> None:
+        self.a_edge, self.r_zone, self.W = a_edge, r_zone, W
+        super().__init__(f"contact radius {a_edge * 1e6:.4g} um at W = {W:.4g} N reaches "
+                         f"{ZONE_FILL_MAX:.0%} of the contact candidate zone (r <= {r_zone * 1e6:.4g} um)")
+
+
+def reference_radius(W: float, R: float, E_star_top: float, Y_min: float | None,
+                     delta_max: float | None = None) -> float:
+    """Contact radius [m] the mesh is sized for: the largest the path can reach, estimated before
+    meshing with the plastic flattening accounted for.
+
+    Load control: the larger of Hertz's radius (Johnson eq 4.22) and the fully plastic one,
+    ``W = pi a^2 2.8 Y`` (Tabor), times 1.05. Approach control (``delta_max``, the model's
+    approach): the larger of Hertz's ``a^2 = R delta`` and the truncated sphere's
+    ``a^2 = 2 R delta`` (perfectly plastic flattening, no pile-up; Kogut & Etsion's fit
+    ``a^2/a_c^2 = 0.94 (delta/delta_c)^1.146`` stays below it up to delta/delta_c ~ 300).
+    """
+    a = float(hertz_circular(W, R, E_star_top).a0)
+    if Y_min is not None:
+        a = max(a, 1.05 * math.sqrt(W / (math.pi * 2.8 * Y_min)))
+    if delta_max is not None:
+        a = max(a, math.sqrt(2.0 * R * delta_max)) if Y_min is not None else max(a, math.sqrt(R * delta_max))
+    return a
 
 
 def load_path(W_max: float, n_steps: int, unload: bool = False, reload: bool = False) -> list[float]:
@@ -154,6 +192,7 @@ def solve_plastic(
     newton: NewtonSettings | None = None,
     targets: list[float] | None = None,
     delta_max: float | None = None,
+    max_growths: int = 3,
 ) -> PlasticResult:
     """Follow the load path of ``case`` (load ``W``) with the elastic-plastic FE model.
 
@@ -183,9 +222,48 @@ def solve_plastic(
         equal ones, e.g. geometric steps for deep indentation; unloading mirrors them.
     delta_max
         Approach control: ``n_steps`` equal approach increments to ``delta_max`` [m] (and back to
-        zero with ``unload``); the load comes out. ``case.W`` then only sizes the mesh and scales
-        the residual tolerance.
+        zero with ``unload``); the load comes out. ``case.W`` then only scales the residual
+        tolerance (the mesh is sized from ``delta_max``).
+    max_growths
+        When the contact reaches :data:`ZONE_FILL_MAX` of its candidate zone the path is solved
+        again on a mesh with a larger reference radius (:data:`ZONE_GROWTH`), at most this many
+        times; then (or with ``max_growths = 0``) :class:`CoatHertzError` stops the run. The
+        reference radii tried are in ``meta["zone_growths"]``.
+
+    Raises
+    ------
+    CoatHertzError
+        Bad input, or a contact that outgrows its candidate zone ``max_growths`` times.
+    ConvergenceError
+        An increment that does not converge.
     """
+    if not (isinstance(max_growths, int) and 0 <= max_growths <= 10):
+        raise CoatHertzError(f"max_growths must be an integer in [0, 10], got {max_growths!r}")
+    tried: list[float] = []
+    while True:
+        try:
+            res = _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_snapshots,
+                                      locate_first_yield, progress, a_ref, newton, targets, delta_max)
+        except ContactZoneExceeded as exc:
+            tried.append(exc.r_zone)
+            if len(tried) > max_growths:
+                raise CoatHertzError(
+                    f"elastic-plastic FE: {exc}; stopped after {max_growths} mesh growth(s) "
+                    "(pass a larger a_ref or a smaller load/approach)") from None
+            a_ref = ZONE_GROWTH * exc.a_edge / ZONE_FILL_MAX / _r_fine_of(mesh)
+            continue
+        res.meta["zone_growths"] = tried
+        return res
+
+
+def _r_fine_of(mesh: str | MeshSpec) -> float:
+    spec = PLASTIC_MESHES.get(mesh) if isinstance(mesh, str) else mesh
+    return spec.r_fine if isinstance(spec, MeshSpec) else 2.0
+
+
+def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_snapshots, locate_first_yield,
+                        progress, a_ref, newton, targets, delta_max) -> PlasticResult:
+    """One attempt of :func:`solve_plastic` on one mesh (raises :class:`ContactZoneExceeded`)."""
     eq = axisymmetric_equivalent(case)
     if eq is None:
         raise CoatHertzError("the elastic-plastic FE model supports a rigid sphere on a (coated) body or two "
@@ -201,12 +279,12 @@ def solve_plastic(
         if m.nu >= 0.5:
             raise CoatHertzError(f"the elastic-plastic model needs nu < 0.5 (B-bar form), got nu = {m.nu}")
     W = case.W
+    if delta_max is not None and not (isinstance(delta_max, int | float) and 0 < delta_max < math.inf):
+        raise CoatHertzError(f"delta_max must be a length > 0 [m], got {delta_max!r}")
     if a_ref is None:
-        top = mats[0]
-        a_ref = float(hertz_circular(W, eq.R, top.E_star).a0)
         ys = [m.plasticity.Y for m in mats if m.plasticity is not None]
-        if ys:  # fully plastic contact: mean pressure ~ 2.8 Y (Tabor)
-            a_ref = max(a_ref, 1.05 * math.sqrt(W / (math.pi * 2.8 * min(ys))))
+        a_ref = reference_radius(W, eq.R, mats[0].E_star, min(ys) if ys else None,
+                                 None if delta_max is None else delta_max / eq.delta_factor)
     lm = build_mesh(a_ref, h, spec, rigid_base)
     regions = []
     if h > 0:
@@ -239,6 +317,7 @@ def solve_plastic(
         down = [*up[-2::-1], 0.0]
         targets = up + (down if (unload or reload) else []) + (up if reload else [])
     weights = model.weights_all[geom.cand]
+    r_zone = float(geom.r[-1])
     top = model.top
     r_top = model.r_dof[top]
 
@@ -252,14 +331,14 @@ def solve_plastic(
         p = surface_pressure(inc.lam, weights)
         a = math.nan
         if inc.active.any() and inc.W > 0:
+            a_edge = float(geom.r[inc.active].max())
+            if a_edge > ZONE_FILL_MAX * r_zone:
+                raise ContactZoneExceeded(a_edge, r_zone, inc.W)
             # the sub-element gap fit (post.contact_radius) where it is plausible; otherwise the
             # active nodes' tributary disc a_num (plastic contacts: flat pressure, pile-up, so the
             # p^2 fit of the elastic model does not apply)
-            try:
-                radii = contact_radius(geom.r, p, inc.gap, inc.active)
-                a = radii["a_gap"] if math.isfinite(radii["a_gap"]) else radii["a_num"]
-            except Exception:  # contact at the end of the candidate zone: last active node
-                a = float(geom.r[inc.active].max())
+            radii = contact_radius(geom.r, p, inc.gap, inc.active)
+            a = radii["a_gap"] if math.isfinite(radii["a_gap"]) else radii["a_num"]
         z = _plastic_zone(asm, state.states)
         curves["W"].append(inc.W)
         curves["delta"].append(eq.delta_factor * inc.delta if math.isfinite(inc.delta) else math.nan)
@@ -307,10 +386,10 @@ def solve_plastic(
                   for k, m in enumerate(mats) if m.plasticity is not None},
     }
     a_max = np.nanmax(np.array(curves["a"], dtype=float)) if curves["a"] else math.nan
-    if a_max / R > 0.1:
-        msg = (f"a/R = {a_max / R:.3g} > 0.1: the small-strain, half-space model is outside its "
+    if a_max / R > A_OVER_R_MAX:
+        msg = (f"a/R = {a_max / R:.3g} > {A_OVER_R_MAX:g}: the small-strain, half-space model is outside its "
                "assumptions (finite deformation and the sphere's curvature matter)")
-        warnings.warn(msg, ModelValidityWarning, stacklevel=2)
+        warnings.warn(msg, ModelValidityWarning, stacklevel=3)
         meta["validity"] = msg
     if locate_first_yield:
         meta["first_yield"] = _first_yield_load(solver, asm, targets, curves)
