@@ -339,12 +339,15 @@ def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_sn
             # p^2 fit of the elastic model does not apply)
             radii = contact_radius(geom.r, p, inc.gap, inc.active)
             a = radii["a_gap"] if math.isfinite(radii["a_gap"]) else radii["a_num"]
+        delta = inc.delta
+        if not inc.active.any():  # no contact (W = 0): the sphere just touches the crater's bottom
+            a, delta = 0.0, float(-state.u[top][0])
         z = _plastic_zone(asm, state.states)
         curves["W"].append(inc.W)
-        curves["delta"].append(eq.delta_factor * inc.delta if math.isfinite(inc.delta) else math.nan)
+        curves["delta"].append(eq.delta_factor * delta)
         curves["a"].append(a)
         curves["p_max"].append(float(p.max()) if p.size else 0.0)
-        curves["p_mean"].append(inc.W / (math.pi * a**2) if a > 0 else math.nan)
+        curves["p_mean"].append(inc.W / (math.pi * a**2) if a > 0 else 0.0)
         curves["newton_iterations"].append(inc.newton_iterations)
         curves["cutbacks"].append(inc.cutbacks)
         curves["ep_max"].append(z["ep_max"])

@@ -16,7 +16,7 @@ from coathertz.errors import CoatHertzError
 
 def run_plastic(case: ContactCase, args: argparse.Namespace) -> int:
     from coathertz.fem.method import axisymmetric_equivalent
-    from coathertz.fem.plastic_method import solve_plastic, write_vtu_series
+    from coathertz.fem.plastic_method import PLASTIC_MESHES, solve_plastic, write_vtu_series
 
     eq = axisymmetric_equivalent(case)
     mats = []
@@ -26,7 +26,10 @@ def run_plastic(case: ContactCase, args: argparse.Namespace) -> int:
     if not any(m.plasticity is not None for m in mats):
         raise CoatHertzError("--plastic needs yield data in the case: add Y = \"1 GPa\" (and optionally "
                              "hardening) to the body's material or coating table")
-    mesh = args.mesh if args.mesh in ("coarse", "default", "fine") else "default"
+    if args.mesh not in PLASTIC_MESHES:
+        raise CoatHertzError(f"--mesh with --plastic must be one of {', '.join(PLASTIC_MESHES)}, "
+                             f"got {args.mesh!r}")
+    mesh = args.mesh
     total = args.steps * (1 + bool(args.unload or args.reload) + bool(args.reload))
     count = [0]
 
@@ -63,8 +66,11 @@ def run_plastic(case: ContactCase, args: argparse.Namespace) -> int:
               f"{c['p_max'][k] / 1e6:12.5g} {c['p_mean'][k] / 1e6:13.5g} {c['ep_max'][k]:9.3g} "
               f"{c['newton_iterations'][k]:6d}")
     z = res.final["plastic_zone"]
-    print(f"plastic zone: max ep = {z['ep_max']:.3g}, r <= {z['zone_r'] * 1e6:.4g} um, "
-          f"depth {z['zone_top'] * 1e6:.4g}-{z['zone_depth'] * 1e6:.4g} um")
+    if z["plastic_points"]:
+        print(f"plastic zone: max ep = {z['ep_max']:.3g}, r <= {z['zone_r'] * 1e6:.4g} um, "
+              f"depth {z['zone_top'] * 1e6:.4g}-{z['zone_depth'] * 1e6:.4g} um")
+    else:
+        print("plastic zone: none (no quadrature point yielded along the path)")
     if res.final.get("residual_depth") is not None:
         print(f"residual depth {res.final['residual_depth'] * 1e6:.5g} um")
         ex = res.final["residual"]["stress_extrema"]

@@ -15,10 +15,15 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     from coathertz.fem.method import CONTACTS, SOLVERS
 
     add_case_arguments(parser)
+    from coathertz.fem.plastic_method import PLASTIC_MESHES
+
     levels = " / ".join(str(s.n_a) for s in MESH_LEVELS.values())
+    p_levels = " / ".join(str(s.n_a) for s in PLASTIC_MESHES.values())
     parser.add_argument("--mesh", default="default", choices=list(MESH_LEVELS),
                         help=f"mesh level: {levels} elements across the estimated contact radius "
-                             "(the output counts them across the computed a, which differs a little)")
+                             "(the output counts them across the computed a, which differs a little); "
+                             f"with --plastic {p_levels} across the largest contact radius estimated "
+                             "for the path")
     parser.add_argument("--contact", default="active-set", choices=list(CONTACTS),
                         help="contact formulation (default: active-set, exact)")
     parser.add_argument("--solver", default="direct", choices=list(SOLVERS),
@@ -74,6 +79,8 @@ def run(args: argparse.Namespace) -> int:
     if args.vtu:
         check_output_file(args.vtu, "--vtu")
     if args.plastic:
+        if args.reload and not args.unload:
+            raise CoatHertzError("--reload reloads after unloading: give --unload as well")
         if not 1 <= args.steps <= 10_000:
             raise CoatHertzError("--steps: load increments to W must be an integer in [1, 10000], "
                                  f"got {args.steps}")
