@@ -38,7 +38,8 @@ from coathertz.fem.method import axisymmetric_equivalent
 from coathertz.fem.model import FEModel, Region
 from coathertz.fem.plastic_assembly import BBarAssembler
 from coathertz.fem.plastic_contact import IncrementalContact, NewtonSettings, PathState, geometry_of
-from coathertz.fem.post import contact_radius, stress_report, surface_pressure
+from coathertz.fem.plastic_edge import edge_radius
+from coathertz.fem.post import stress_report, surface_pressure
 from coathertz.hertz import hertz_circular
 from coathertz.materials import Material
 from coathertz.validity import A_OVER_R_MAX
@@ -323,25 +324,29 @@ def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_sn
 
     curves: dict[str, list] = {k: [] for k in (
         "W", "delta", "a", "p_max", "p_mean", "newton_iterations", "cutbacks", "ep_max", "zone_r",
-        "zone_depth", "phase", "residual_depth", "cycle")}
+        "zone_depth", "phase", "residual_depth", "cycle", "a_lo", "a_hi", "a_err", "edge_exponent",
+        "p_mean_lo", "p_mean_hi")}
     profiles: list[dict] = []
     snapshots: list = []
 
     def record(inc, state: PathState, phase: str) -> None:
         p = surface_pressure(inc.lam, weights)
         a = math.nan
-        if inc.active.any() and inc.W > 0:
+        if inc.active.any():
             a_edge = float(geom.r[inc.active].max())
             if a_edge > ZONE_FILL_MAX * r_zone:
                 raise ContactZoneExceeded(a_edge, r_zone, inc.W)
-            # the sub-element gap fit (post.contact_radius) where it is plausible; otherwise the
-            # active nodes' tributary disc a_num (plastic contacts: flat pressure, pile-up, so the
-            # p^2 fit of the elastic model does not apply)
-            radii = contact_radius(geom.r, p, inc.gap, inc.active)
-            a = radii["a_gap"] if math.isfinite(radii["a_gap"]) else radii["a_num"]
+            edge = edge_radius(geom.r, inc.gap, inc.active)  # one estimator, every increment
+            a = edge["a"]
         delta = inc.delta
         if not inc.active.any():  # no contact (W = 0): the sphere just touches the crater's bottom
             a, delta = 0.0, float(-state.u[top][0])
+            edge = {"a_lo": 0.0, "a_hi": 0.0, "a_err": 0.0, "m": math.nan}
+        for k in ("a_lo", "a_hi", "a_err"):
+            curves[k].append(edge[k])
+        curves["edge_exponent"].append(edge["m"])
+        curves["p_mean_lo"].append(inc.W / (math.pi * edge["a_hi"] ** 2) if edge["a_hi"] > 0 else 0.0)
+        curves["p_mean_hi"].append(inc.W / (math.pi * edge["a_lo"] ** 2) if edge["a_lo"] > 0 else 0.0)
         z = _plastic_zone(asm, state.states)
         curves["W"].append(inc.W)
         curves["delta"].append(eq.delta_factor * delta)
