@@ -92,6 +92,15 @@ def reference_radius(W: float, R: float, E_star_top: float, Y_min: float | None,
     return a
 
 
+#: SI unit of every curve of :class:`PlasticResult` (``""``: dimensionless or a label).
+CURVE_UNITS: dict[str, str] = {
+    "W": "N", "delta": "m", "a": "m", "p_max": "Pa", "p_mean": "Pa", "newton_iterations": "",
+    "cutbacks": "", "ep_max": "", "zone_r": "m", "zone_depth": "m", "phase": "", "residual_depth": "m",
+    "cycle": "", "a_lo": "m", "a_hi": "m", "a_err": "m", "edge_exponent": "", "p_mean_lo": "Pa",
+    "p_mean_hi": "Pa",
+}
+
+
 def load_path(W_max: float, n_steps: int, unload: bool = False, reload: bool = False) -> list[float]:
     """Targets: ``n_steps`` equal load increments to ``W_max``, then (``unload``) as many down to 0,
     then (``reload``) back up to ``W_max``."""
@@ -144,6 +153,19 @@ class PlasticResult:
 
     def write_json(self, path: str | Path) -> None:
         Path(path).write_text(json.dumps(self.to_json(), indent=1))
+
+    def write_csv(self, path: str | Path) -> None:
+        """The per-increment curves, one row per increment, SI units in the header; an undefined
+        value (the edge exponent without contact) is an empty cell."""
+        import csv
+
+        with open(path, "w", newline="") as f:
+            w = csv.writer(f)
+            keys = list(self.curves)
+            w.writerow([f"{k} [{CURVE_UNITS[k]}]" if CURVE_UNITS.get(k) else k for k in keys])
+            for row in zip(*(self.curves[k] for k in keys), strict=True):
+                w.writerow([("" if not math.isfinite(v) else repr(float(v)))  # missing: empty cell
+                            if isinstance(v, float | np.floating) else v for v in row])
 
 
 def _plastic_zone(asm: BBarAssembler, states: list, tol: float = 1e-12) -> dict:
@@ -322,10 +344,7 @@ def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_sn
     top = model.top
     r_top = model.r_dof[top]
 
-    curves: dict[str, list] = {k: [] for k in (
-        "W", "delta", "a", "p_max", "p_mean", "newton_iterations", "cutbacks", "ep_max", "zone_r",
-        "zone_depth", "phase", "residual_depth", "cycle", "a_lo", "a_hi", "a_err", "edge_exponent",
-        "p_mean_lo", "p_mean_hi")}
+    curves: dict[str, list] = {k: [] for k in CURVE_UNITS}
     profiles: list[dict] = []
     snapshots: list = []
 

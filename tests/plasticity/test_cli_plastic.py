@@ -13,7 +13,8 @@ from coathertz.errors import CoatHertzError
 def test_cli_plastic_unload(tmp_path, capsys):
     out = tmp_path / "curves.json"
     rc = main(["fem", "example:yielding_steel", "--plastic", "--unload", "--steps", "1", "--mesh", "coarse",
-               "--out-json", str(out), "--vtu-dir", str(tmp_path / "vtu")])
+               "--out-json", str(out), "--vtu-dir", str(tmp_path / "vtu"),
+               "--out-csv", str(tmp_path / "c.csv")])
     assert rc == 0
     text = capsys.readouterr()
     assert "residual depth" in text.out and "Newton" in text.out and "loading" in text.err
@@ -26,6 +27,12 @@ def test_cli_plastic_unload(tmp_path, capsys):
     assert c["a"][-1] == 0.0 and c["p_mean"][-1] == 0.0
     assert c["delta"][-1] == pytest.approx(data["final"]["residual_depth"], rel=1e-12)
     assert all(v is not None for k in ("W", "delta", "a", "p_max", "p_mean") for v in c[k])
+    import csv
+
+    rows = list(csv.reader((tmp_path / "c.csv").open()))
+    assert rows[0][:3] == ["W [N]", "delta [m]", "a [m]"] and len(rows) == 3
+    assert float(rows[1][0]) == pytest.approx(c["W"][0], rel=1e-15) and float(rows[2][0]) == 0.0
+    assert "nan" not in (tmp_path / "c.csv").read_text()
     assert len(list((tmp_path / "vtu").glob("*.vtu"))) == 2
 
 

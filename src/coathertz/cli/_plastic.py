@@ -52,6 +52,8 @@ def run_plastic(case: ContactCase, args: argparse.Namespace) -> int:
         print(f"{len(paths)} VTU files written to {args.vtu_dir}", file=sys.stderr)
     if args.out_json:
         res.write_json(args.out_json)
+    if getattr(args, "out_csv", None):
+        res.write_csv(args.out_csv)
     if args.json:
         print(json.dumps(res.to_json()["curves"] | {"meta": res.to_json()["meta"]}, indent=1))
         return 0

@@ -39,6 +39,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                    "load control (deep indentation); W only sizes the mesh")
     g.add_argument("--vtu-dir", metavar="DIR", help="--plastic: one VTU per increment (plastic strain)")
     g.add_argument("--out-json", metavar="OUT.json", help="--plastic: write the curves and profiles")
+    g.add_argument("--out-csv", metavar="OUT.csv", help="--plastic: write the curves (one row per increment)")
 
 
 def _solve(method, case):
@@ -86,6 +87,8 @@ def run(args: argparse.Namespace) -> int:
                                  f"got {args.steps}")
         if args.out_json:
             check_output_file(args.out_json, "--out-json")
+        if args.out_csv:
+            check_output_file(args.out_csv, "--out-csv")
         if args.vtu_dir:
             output_dir(args.vtu_dir, "--vtu-dir")
         from coathertz.cli._plastic import run_plastic
