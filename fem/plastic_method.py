@@ -382,7 +382,9 @@ def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_sn
         curves["residual_depth"].append(float(-state.u[top][0]))
         profiles.append({"r": geom.r, "p": p, "u_z": state.u[geom.cand]})
         if keep_snapshots:
-            snapshots.append((state.u.copy(), [st.get("ep") for st in state.states]))
+            # the committed state: stresses follow from it without further flow (write_vtu_series)
+            snapshots.append((state.u.copy(), [{k: v.copy() for k, v in st.items()} for st in state.states],
+                              inc.W))
 
     phases = ["loading"] * n_steps + ["unloading"] * (n_steps if (unload or reload) else 0) + \
         ["reloading"] * (n_steps if reload else 0)
@@ -458,9 +460,17 @@ def _first_yield_load(solver: IncrementalContact, asm: BBarAssembler, targets, c
 
 
 def write_vtu_series(result: PlasticResult, outdir: str | Path, stem: str = "plastic") -> list[Path]:
-    """One VTU per increment (displacement, element-mean equivalent plastic strain, region);
-    needs ``keep_snapshots=True``."""
+    """One VTU per increment and a ParaView ``.pvd`` time series ``{stem}.pvd`` (time = increment
+    number, the row of the curves: CSV / JSON); needs ``keep_snapshots=True``.
+
+    Point data: displacement ``u`` [m]. Cell data (element means over the quadrature points):
+    stresses ``sigma_rr, sigma_zz, sigma_tt, sigma_rz`` [Pa] and von Mises ``sigma_eq`` [Pa] of the
+    committed state, equivalent plastic strain ``ep`` (0 in elastic regions), ``region`` index.
+    Returns the VTU paths (the ``.pvd`` is written next to them).
+    """
     import meshio
+
+    from coathertz.fem.post import STRESS_NAMES
 
     if not result.snapshots:
         raise CoatHertzError("no snapshots: call solve_plastic(..., keep_snapshots=True)")
@@ -470,18 +480,27 @@ def write_vtu_series(result: PlasticResult, outdir: str | Path, stem: str = "pla
     mesh = model.lm.mesh
     nodal = model.basis.nodal_dofs
     points = np.column_stack([mesh.p[0], mesh.p[1], np.zeros(mesh.p.shape[1])])
+    n_el = mesh.t.shape[1]
     paths = []
-    for i, (u, eps) in enumerate(result.snapshots):
+    for i, (u, states, _W) in enumerate(result.snapshots):
         disp = np.zeros((mesh.p.shape[1], 3))
         disp[:, 0], disp[:, 1] = u[nodal[0]], u[nodal[1]]
-        ep_cell = np.zeros(mesh.t.shape[1])
-        region = np.zeros(mesh.t.shape[1])
-        for k, ((els, _), ep) in enumerate(zip(asm.regions, eps, strict=True)):
-            region[els] = k
-            if ep is not None:
-                ep_cell[els] = ep.mean(axis=-1)
+        _, _, sigmas, _ = asm.evaluate(u, states, tangent=False)
+        cells = {k: np.zeros(n_el) for k in (*STRESS_NAMES, "sigma_eq", "ep", "region")}
+        for k, ((els, _), st, sig) in enumerate(zip(asm.regions, states, sigmas, strict=True)):
+            cells["region"][els] = k
+            for j, name in enumerate(STRESS_NAMES):
+                cells[name][els] = sig[j].mean(axis=-1)
+            cells["sigma_eq"][els] = equivalent_stress(sig).mean(axis=-1)
+            if "ep" in st:
+                cells["ep"][els] = st["ep"].mean(axis=-1)
         p = outdir / f"{stem}_{i:04d}.vtu"
         meshio.write(p, meshio.Mesh(points, [("quad", mesh.t.T)], point_data={"u": disp},
-                                    cell_data={"ep": [ep_cell], "region": [region]}))
+                                    cell_data={k: [v] for k, v in cells.items()}))
         paths.append(p)
+    entries = "\n".join(f'    <DataSet timestep="{i}" part="0" file="{p.name}"/>'
+                        for i, p in enumerate(paths))
+    (outdir / f"{stem}.pvd").write_text(
+        '<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n  <Collection>\n'
+        f"{entries}\n  </Collection>\n</VTKFile>\n")
     return paths

@@ -36,8 +36,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     g.add_argument("--reload", action="store_true", help="reload to W after unloading")
     g.add_argument("--steps", type=int, default=10, help="load increments to W (default 10)")
     g.add_argument("--approach", metavar="DELTA", help="approach control to DELTA (e.g. '20 um') instead of "
-                   "load control (deep indentation); W only sizes the mesh")
-    g.add_argument("--vtu-dir", metavar="DIR", help="--plastic: one VTU per increment (plastic strain)")
+                   "load control (deep indentation); the mesh is sized from DELTA")
+    g.add_argument("--vtu-dir", metavar="DIR", help="--plastic: one VTU per increment (displacement, "
+                   "stresses, plastic strain) and a .pvd time series")
     g.add_argument("--out-json", metavar="OUT.json", help="--plastic: write the curves and profiles")
     g.add_argument("--out-csv", metavar="OUT.csv", help="--plastic: write the curves (one row per increment)")
 
