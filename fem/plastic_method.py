@@ -405,7 +405,8 @@ def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_sn
     mesh_d = {"n_a": spec.n_a, "r_fine": spec.r_fine, "t_fine": spec.t_fine, "growth": spec.growth,
               "L": spec.L}
     meta: dict = {
-        "elements": lm.n_elements, "dofs": int(model.n_u), "mesh": mesh_d, "a_ref": a_ref, "bbar": bbar,
+        "elements": lm.n_elements, "h": h, "dofs": int(model.n_u), "mesh": mesh_d, "a_ref": a_ref,
+        "bbar": bbar,
         "n_steps": n_steps, "unload": bool(unload), "reload": bool(reload), "control": control,
         "increments": len(path.increments), "factorisations": path.factorisations,
         "wall_time": path.wall_time, "R_model": R, "delta_factor": eq.delta_factor,

@@ -14,7 +14,7 @@ def test_cli_plastic_unload(tmp_path, capsys):
     out = tmp_path / "curves.json"
     rc = main(["fem", "example:yielding_steel", "--plastic", "--unload", "--steps", "1", "--mesh", "coarse",
                "--out-json", str(out), "--vtu-dir", str(tmp_path / "vtu"),
-               "--out-csv", str(tmp_path / "c.csv")])
+               "--out-csv", str(tmp_path / "c.csv"), "--plot-dir", str(tmp_path / "fig")])
     assert rc == 0
     text = capsys.readouterr()
     assert "residual depth" in text.out and "Newton" in text.out and "loading" in text.err
@@ -33,6 +33,11 @@ def test_cli_plastic_unload(tmp_path, capsys):
     assert rows[0][:3] == ["W [N]", "delta [m]", "a [m]"] and len(rows) == 3
     assert float(rows[1][0]) == pytest.approx(c["W"][0], rel=1e-15) and float(rows[2][0]) == 0.0
     assert "nan" not in (tmp_path / "c.csv").read_text()
+    import matplotlib.image as mpimg
+
+    for name in ("load_approach.png", "plastic_zone.png"):
+        img = mpimg.imread(tmp_path / "fig" / name)
+        assert img.shape[0] > 300 and img[..., :3].std() > 0.05, name  # not blank
     assert len(list((tmp_path / "vtu").glob("*.vtu"))) == 2
 
 

@@ -54,6 +54,17 @@ def run_plastic(case: ContactCase, args: argparse.Namespace) -> int:
         res.write_json(args.out_json)
     if getattr(args, "out_csv", None):
         res.write_csv(args.out_csv)
+    if getattr(args, "plot_dir", None):
+        from pathlib import Path
+
+        from coathertz.fem.plastic_plot import plot_load_approach, plot_plastic_zone
+
+        d = Path(args.plot_dir)
+        d.mkdir(parents=True, exist_ok=True)
+        label = case.describe() if hasattr(case, "describe") else ""
+        plot_load_approach(res, d / "load_approach.png", f"load-approach, elastic-plastic FE ({mesh} mesh)")
+        plot_plastic_zone(res, d / "plastic_zone.png", f"plastic zone, elastic-plastic FE ({mesh} mesh)")
+        print(f"figures written to {d} ({label})" if label else f"figures written to {d}", file=sys.stderr)
     if args.json:
         print(json.dumps(res.to_json()["curves"] | {"meta": res.to_json()["meta"]}, indent=1))
         return 0

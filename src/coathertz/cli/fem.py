@@ -41,6 +41,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                    "stresses, plastic strain) and a .pvd time series")
     g.add_argument("--out-json", metavar="OUT.json", help="--plastic: write the curves and profiles")
     g.add_argument("--out-csv", metavar="OUT.csv", help="--plastic: write the curves (one row per increment)")
+    g.add_argument("--plot-dir", metavar="DIR", help="--plastic: load_approach.png and plastic_zone.png")
 
 
 def _solve(method, case):
@@ -92,6 +93,8 @@ def run(args: argparse.Namespace) -> int:
             check_output_file(args.out_csv, "--out-csv")
         if args.vtu_dir:
             output_dir(args.vtu_dir, "--vtu-dir")
+        if args.plot_dir:
+            output_dir(args.plot_dir, "--plot-dir")
         from coathertz.cli._plastic import run_plastic
 
         return run_plastic(case, args)
