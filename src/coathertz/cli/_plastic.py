@@ -93,6 +93,10 @@ def run_plastic(case: ContactCase, args: argparse.Namespace) -> int:
                 print(f"residual interface stress ({side} side): max sigma_1 "
                       f"{d['max_sigma_1'] / 1e6:.5g} MPa at r = {d['r_max_sigma_1'] * 1e6:.4g} um, "
                       f"max |sigma_rz| {d['max_abs_sigma_rz'] / 1e6:.5g} MPa")
+    if m.get("zone_growths"):
+        print(f"coathertz fem: note: the contact reached its candidate zone's edge "
+              f"(r <= {', '.join(f'{r * 1e6:.4g}' for r in m['zone_growths'])} um); the path was solved "
+              f"again on a grown mesh (a_ref = {m['a_ref'] * 1e6:.4g} um)", file=sys.stderr)
     if "validity" in m:
         print(f"coathertz fem: warning: {m['validity']}", file=sys.stderr)
     return 0
