@@ -98,3 +98,17 @@ def test_linear_hardening_needs_H():
         case_from_dict(data)
     data["body2"]["material"]["H"] = "10 GPa"
     assert case_from_dict(data).body2.material.plasticity.H == 10e9
+
+
+def test_cli_plastic_says_when_the_mesh_grew(monkeypatch, capsys):
+    """A mesh sized for a third of the contact: the run grows it and says so on one line."""
+    import coathertz.fem.plastic_method as pm
+
+    sized = pm.reference_radius
+    monkeypatch.setattr(pm, "reference_radius", lambda *a, **k: sized(*a, **k) / 3.0)
+    rc = main(["fem", "example:yielding_steel", "--plastic", "--steps", "1", "--mesh", "coarse",
+               "--approach", "1.5 um"])
+    cap = capsys.readouterr()
+    assert rc == 0
+    lines = [ln for ln in cap.err.splitlines() if "grown mesh" in ln]
+    assert len(lines) == 1 and "candidate zone's edge" in lines[0], cap.err
