@@ -358,8 +358,10 @@ def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_sn
             edge = edge_radius(geom.r, inc.gap, inc.active)  # one estimator, every increment
             a = edge["a"]
         delta = inc.delta
-        if not inc.active.any():  # no contact (W = 0): the sphere just touches the crater's bottom
-            a, delta = 0.0, float(-state.u[top][0])
+        if not inc.active.any():  # no contact: a = 0; under load control (W = 0, approach undefined)
+            a = 0.0              # delta is where the sphere just touches the crater's bottom
+            if not math.isfinite(delta):
+                delta = float(-state.u[top][0])
             edge = {"a_lo": 0.0, "a_hi": 0.0, "a_err": 0.0, "m": math.nan}
         for k in ("a_lo", "a_hi", "a_err"):
             curves[k].append(edge[k])
