@@ -38,9 +38,11 @@ from coathertz.fem.method import axisymmetric_equivalent
 from coathertz.fem.model import FEModel, Region
 from coathertz.fem.plastic_assembly import BBarAssembler
 from coathertz.fem.plastic_contact import IncrementalContact, NewtonSettings, PathState, geometry_of
-from coathertz.fem.post import contact_radius, stress_report, surface_pressure
+from coathertz.fem.plastic_edge import edge_radius
+from coathertz.fem.post import stress_report, surface_pressure
 from coathertz.hertz import hertz_circular
 from coathertz.materials import Material
+from coathertz.validity import A_OVER_R_MAX
 
 ModelValidityWarning = getattr(errors, "ModelValidityWarning", UserWarning)
 
@@ -50,6 +52,52 @@ PLASTIC_MESHES: dict[str, MeshSpec] = {
     "coarse": MeshSpec(n_a=12, r_fine=2.0, t_fine=1.5, growth=1.4, L=30.0),
     "default": MeshSpec(n_a=20, r_fine=2.0, t_fine=1.5, growth=1.3, L=30.0),
     "fine": MeshSpec(n_a=32, r_fine=2.0, t_fine=1.5, growth=1.25, L=30.0),
+}
+
+
+#: The contact may reach this fraction of the candidate zone (the fine zone, ``r_fine * a_ref``)
+#: before the mesh is grown: the radius estimators read the gap of at least 4 free nodes beyond
+#: the contact edge, and the fine zone's elements must still resolve the edge.
+ZONE_FILL_MAX = 0.75
+#: Each growth rebuilds the mesh with ``a_ref`` enlarged by at least this factor.
+ZONE_GROWTH = 1.5
+
+
+class ContactZoneExceeded(CoatHertzError):
+    """The contact reached the edge of its candidate zone (raised inside the path, caught by
+    :func:`solve_plastic`, which grows the mesh or stops with one clear line)."""
+
+    def __init__(self, a_edge: float, r_zone: float, W: float) -> None:
+        self.a_edge, self.r_zone, self.W = a_edge, r_zone, W
+        super().__init__(f"contact radius {a_edge * 1e6:.4g} um at W = {W:.4g} N reaches "
+                         f"{ZONE_FILL_MAX:.0%} of the contact candidate zone (r <= {r_zone * 1e6:.4g} um)")
+
+
+def reference_radius(W: float, R: float, E_star_top: float, Y_min: float | None,
+                     delta_max: float | None = None) -> float:
+    """Contact radius [m] the mesh is sized for: the largest the path can reach, estimated before
+    meshing with the plastic flattening accounted for.
+
+    Load control: the larger of Hertz's radius (Johnson eq 4.22) and the fully plastic one,
+    ``W = pi a^2 2.8 Y`` (Tabor), times 1.05. Approach control (``delta_max``, the model's
+    approach): the larger of Hertz's ``a^2 = R delta`` and the truncated sphere's
+    ``a^2 = 2 R delta`` (perfectly plastic flattening, no pile-up; Kogut & Etsion's fit
+    ``a^2/a_c^2 = 0.94 (delta/delta_c)^1.146`` stays below it up to delta/delta_c ~ 300).
+    """
+    a = float(hertz_circular(W, R, E_star_top).a0)
+    if Y_min is not None:
+        a = max(a, 1.05 * math.sqrt(W / (math.pi * 2.8 * Y_min)))
+    if delta_max is not None:
+        a = max(a, math.sqrt(2.0 * R * delta_max)) if Y_min is not None else max(a, math.sqrt(R * delta_max))
+    return a
+
+
+#: SI unit of every curve of :class:`PlasticResult` (``""``: dimensionless or a label).
+CURVE_UNITS: dict[str, str] = {
+    "W": "N", "delta": "m", "a": "m", "p_max": "Pa", "p_mean": "Pa", "newton_iterations": "",
+    "cutbacks": "", "ep_max": "", "zone_r": "m", "zone_depth": "m", "phase": "", "residual_depth": "m",
+    "cycle": "", "a_lo": "m", "a_hi": "m", "a_err": "m", "edge_exponent": "", "p_mean_lo": "Pa",
+    "p_mean_hi": "Pa",
 }
 
 
@@ -106,6 +154,19 @@ class PlasticResult:
     def write_json(self, path: str | Path) -> None:
         Path(path).write_text(json.dumps(self.to_json(), indent=1))
 
+    def write_csv(self, path: str | Path) -> None:
+        """The per-increment curves, one row per increment, SI units in the header; an undefined
+        value (the edge exponent without contact) is an empty cell."""
+        import csv
+
+        with open(path, "w", newline="") as f:
+            w = csv.writer(f)
+            keys = list(self.curves)
+            w.writerow([f"{k} [{CURVE_UNITS[k]}]" if CURVE_UNITS.get(k) else k for k in keys])
+            for row in zip(*(self.curves[k] for k in keys), strict=True):
+                w.writerow([("" if not math.isfinite(v) else repr(float(v)))  # missing: empty cell
+                            if isinstance(v, float | np.floating) else v for v in row])
+
 
 def _plastic_zone(asm: BBarAssembler, states: list, tol: float = 1e-12) -> dict:
     """Largest ``ep`` and the extent (max r, max depth) of the points with ``ep > tol``."""
@@ -154,6 +215,7 @@ def solve_plastic(
     newton: NewtonSettings | None = None,
     targets: list[float] | None = None,
     delta_max: float | None = None,
+    max_growths: int = 3,
 ) -> PlasticResult:
     """Follow the load path of ``case`` (load ``W``) with the elastic-plastic FE model.
 
@@ -183,9 +245,48 @@ def solve_plastic(
         equal ones, e.g. geometric steps for deep indentation; unloading mirrors them.
     delta_max
         Approach control: ``n_steps`` equal approach increments to ``delta_max`` [m] (and back to
-        zero with ``unload``); the load comes out. ``case.W`` then only sizes the mesh and scales
-        the residual tolerance.
+        zero with ``unload``); the load comes out. ``case.W`` then only scales the residual
+        tolerance (the mesh is sized from ``delta_max``).
+    max_growths
+        When the contact reaches :data:`ZONE_FILL_MAX` of its candidate zone the path is solved
+        again on a mesh with a larger reference radius (:data:`ZONE_GROWTH`), at most this many
+        times; then (or with ``max_growths = 0``) :class:`CoatHertzError` stops the run. The
+        reference radii tried are in ``meta["zone_growths"]``.
+
+    Raises
+    ------
+    CoatHertzError
+        Bad input, or a contact that outgrows its candidate zone ``max_growths`` times.
+    ConvergenceError
+        An increment that does not converge.
     """
+    if not (isinstance(max_growths, int) and 0 <= max_growths <= 10):
+        raise CoatHertzError(f"max_growths must be an integer in [0, 10], got {max_growths!r}")
+    tried: list[float] = []
+    while True:
+        try:
+            res = _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_snapshots,
+                                      locate_first_yield, progress, a_ref, newton, targets, delta_max)
+        except ContactZoneExceeded as exc:
+            tried.append(exc.r_zone)
+            if len(tried) > max_growths:
+                raise CoatHertzError(
+                    f"elastic-plastic FE: {exc}; stopped after {max_growths} mesh growth(s) "
+                    "(pass a larger a_ref or a smaller load/approach)") from None
+            a_ref = ZONE_GROWTH * exc.a_edge / ZONE_FILL_MAX / _r_fine_of(mesh)
+            continue
+        res.meta["zone_growths"] = tried
+        return res
+
+
+def _r_fine_of(mesh: str | MeshSpec) -> float:
+    spec = PLASTIC_MESHES.get(mesh) if isinstance(mesh, str) else mesh
+    return spec.r_fine if isinstance(spec, MeshSpec) else 2.0
+
+
+def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_snapshots, locate_first_yield,
+                        progress, a_ref, newton, targets, delta_max) -> PlasticResult:
+    """One attempt of :func:`solve_plastic` on one mesh (raises :class:`ContactZoneExceeded`)."""
     eq = axisymmetric_equivalent(case)
     if eq is None:
         raise CoatHertzError("the elastic-plastic FE model supports a rigid sphere on a (coated) body or two "
@@ -205,12 +306,12 @@ def solve_plastic(
         if m.nu >= 0.5:
             raise CoatHertzError(f"the elastic-plastic model needs nu < 0.5 (B-bar form), got nu = {m.nu}")
     W = case.W
+    if delta_max is not None and not (isinstance(delta_max, int | float) and 0 < delta_max < math.inf):
+        raise CoatHertzError(f"delta_max must be a length > 0 [m], got {delta_max!r}")
     if a_ref is None:
-        top = mats[0]
-        a_ref = float(hertz_circular(W, eq.R, top.E_star).a0)
         ys = [m.plasticity.Y for m in mats if m.plasticity is not None]
-        if ys:  # fully plastic contact: mean pressure ~ 2.8 Y (Tabor)
-            a_ref = max(a_ref, 1.05 * math.sqrt(W / (math.pi * 2.8 * min(ys))))
+        a_ref = reference_radius(W, eq.R, mats[0].E_star, min(ys) if ys else None,
+                                 None if delta_max is None else delta_max / eq.delta_factor)
     lm = build_mesh(a_ref, h, spec, rigid_base)
     regions = []
     if h > 0:
@@ -243,33 +344,40 @@ def solve_plastic(
         down = [*up[-2::-1], 0.0]
         targets = up + (down if (unload or reload) else []) + (up if reload else [])
     weights = model.weights_all[geom.cand]
+    r_zone = float(geom.r[-1])
     top = model.top
     r_top = model.r_dof[top]
 
-    curves: dict[str, list] = {k: [] for k in (
-        "W", "delta", "a", "p_max", "p_mean", "newton_iterations", "cutbacks", "ep_max", "zone_r",
-        "zone_depth", "phase", "residual_depth", "cycle")}
+    curves: dict[str, list] = {k: [] for k in CURVE_UNITS}
     profiles: list[dict] = []
     snapshots: list = []
 
     def record(inc, state: PathState, phase: str) -> None:
         p = surface_pressure(inc.lam, weights)
         a = math.nan
-        if inc.active.any() and inc.W > 0:
-            # the sub-element gap fit (post.contact_radius) where it is plausible; otherwise the
-            # active nodes' tributary disc a_num (plastic contacts: flat pressure, pile-up, so the
-            # p^2 fit of the elastic model does not apply)
-            try:
-                radii = contact_radius(geom.r, p, inc.gap, inc.active)
-                a = radii["a_gap"] if math.isfinite(radii["a_gap"]) else radii["a_num"]
-            except Exception:  # contact at the end of the candidate zone: last active node
-                a = float(geom.r[inc.active].max())
+        if inc.active.any():
+            a_edge = float(geom.r[inc.active].max())
+            if a_edge > ZONE_FILL_MAX * r_zone:
+                raise ContactZoneExceeded(a_edge, r_zone, inc.W)
+            edge = edge_radius(geom.r, inc.gap, inc.active)  # one estimator, every increment
+            a = edge["a"]
+        delta = inc.delta
+        if not inc.active.any():  # no contact: a = 0; under load control (W = 0, approach undefined)
+            a = 0.0              # delta is where the sphere just touches the crater's bottom
+            if not math.isfinite(delta):
+                delta = float(-state.u[top][0])
+            edge = {"a_lo": 0.0, "a_hi": 0.0, "a_err": 0.0, "m": math.nan}
+        for k in ("a_lo", "a_hi", "a_err"):
+            curves[k].append(edge[k])
+        curves["edge_exponent"].append(edge["m"])
+        curves["p_mean_lo"].append(inc.W / (math.pi * edge["a_hi"] ** 2) if edge["a_hi"] > 0 else 0.0)
+        curves["p_mean_hi"].append(inc.W / (math.pi * edge["a_lo"] ** 2) if edge["a_lo"] > 0 else 0.0)
         z = _plastic_zone(asm, state.states)
         curves["W"].append(inc.W)
-        curves["delta"].append(eq.delta_factor * inc.delta if math.isfinite(inc.delta) else math.nan)
+        curves["delta"].append(eq.delta_factor * delta)
         curves["a"].append(a)
         curves["p_max"].append(float(p.max()) if p.size else 0.0)
-        curves["p_mean"].append(inc.W / (math.pi * a**2) if a > 0 else math.nan)
+        curves["p_mean"].append(inc.W / (math.pi * a**2) if a > 0 else 0.0)
         curves["newton_iterations"].append(inc.newton_iterations)
         curves["cutbacks"].append(inc.cutbacks)
         curves["ep_max"].append(z["ep_max"])
@@ -280,7 +388,9 @@ def solve_plastic(
         curves["residual_depth"].append(float(-state.u[top][0]))
         profiles.append({"r": geom.r, "p": p, "u_z": state.u[geom.cand]})
         if keep_snapshots:
-            snapshots.append((state.u.copy(), [st.get("ep") for st in state.states]))
+            # the committed state: stresses follow from it without further flow (write_vtu_series)
+            snapshots.append((state.u.copy(), [{k: v.copy() for k, v in st.items()} for st in state.states],
+                              inc.W))
 
     phases = ["loading"] * n_steps + ["unloading"] * (n_steps if (unload or reload) else 0) + \
         ["reloading"] * (n_steps if reload else 0)
@@ -301,7 +411,8 @@ def solve_plastic(
     mesh_d = {"n_a": spec.n_a, "r_fine": spec.r_fine, "t_fine": spec.t_fine, "growth": spec.growth,
               "L": spec.L}
     meta: dict = {
-        "elements": lm.n_elements, "dofs": int(model.n_u), "mesh": mesh_d, "a_ref": a_ref, "bbar": bbar,
+        "elements": lm.n_elements, "h": h, "dofs": int(model.n_u), "mesh": mesh_d, "a_ref": a_ref,
+        "bbar": bbar,
         "n_steps": n_steps, "unload": bool(unload), "reload": bool(reload), "control": control,
         "increments": len(path.increments), "factorisations": path.factorisations,
         "wall_time": path.wall_time, "R_model": R, "delta_factor": eq.delta_factor,
@@ -311,10 +422,10 @@ def solve_plastic(
                   for k, m in enumerate(mats) if m.plasticity is not None},
     }
     a_max = np.nanmax(np.array(curves["a"], dtype=float)) if curves["a"] else math.nan
-    if a_max / R > 0.1:
-        msg = (f"a/R = {a_max / R:.3g} > 0.1: the small-strain, half-space model is outside its "
+    if a_max / R > A_OVER_R_MAX:
+        msg = (f"a/R = {a_max / R:.3g} > {A_OVER_R_MAX:g}: the small-strain, half-space model is outside its "
                "assumptions (finite deformation and the sphere's curvature matter)")
-        warnings.warn(msg, ModelValidityWarning, stacklevel=2)
+        warnings.warn(msg, ModelValidityWarning, stacklevel=3)
         meta["validity"] = msg
     if locate_first_yield:
         meta["first_yield"] = _first_yield_load(solver, asm, targets, curves)
@@ -356,9 +467,17 @@ def _first_yield_load(solver: IncrementalContact, asm: BBarAssembler, targets, c
 
 
 def write_vtu_series(result: PlasticResult, outdir: str | Path, stem: str = "plastic") -> list[Path]:
-    """One VTU per increment (displacement, element-mean equivalent plastic strain, region);
-    needs ``keep_snapshots=True``."""
+    """One VTU per increment and a ParaView ``.pvd`` time series ``{stem}.pvd`` (time = increment
+    number, the row of the curves: CSV / JSON); needs ``keep_snapshots=True``.
+
+    Point data: displacement ``u`` [m]. Cell data (element means over the quadrature points):
+    stresses ``sigma_rr, sigma_zz, sigma_tt, sigma_rz`` [Pa] and von Mises ``sigma_eq`` [Pa] of the
+    committed state, equivalent plastic strain ``ep`` (0 in elastic regions), ``region`` index.
+    Returns the VTU paths (the ``.pvd`` is written next to them).
+    """
     import meshio
+
+    from coathertz.fem.post import STRESS_NAMES
 
     if not result.snapshots:
         raise CoatHertzError("no snapshots: call solve_plastic(..., keep_snapshots=True)")
@@ -368,18 +487,27 @@ def write_vtu_series(result: PlasticResult, outdir: str | Path, stem: str = "pla
     mesh = model.lm.mesh
     nodal = model.basis.nodal_dofs
     points = np.column_stack([mesh.p[0], mesh.p[1], np.zeros(mesh.p.shape[1])])
+    n_el = mesh.t.shape[1]
     paths = []
-    for i, (u, eps) in enumerate(result.snapshots):
+    for i, (u, states, _W) in enumerate(result.snapshots):
         disp = np.zeros((mesh.p.shape[1], 3))
         disp[:, 0], disp[:, 1] = u[nodal[0]], u[nodal[1]]
-        ep_cell = np.zeros(mesh.t.shape[1])
-        region = np.zeros(mesh.t.shape[1])
-        for k, ((els, _), ep) in enumerate(zip(asm.regions, eps, strict=True)):
-            region[els] = k
-            if ep is not None:
-                ep_cell[els] = ep.mean(axis=-1)
+        _, _, sigmas, _ = asm.evaluate(u, states, tangent=False)
+        cells = {k: np.zeros(n_el) for k in (*STRESS_NAMES, "sigma_eq", "ep", "region")}
+        for k, ((els, _), st, sig) in enumerate(zip(asm.regions, states, sigmas, strict=True)):
+            cells["region"][els] = k
+            for j, name in enumerate(STRESS_NAMES):
+                cells[name][els] = sig[j].mean(axis=-1)
+            cells["sigma_eq"][els] = equivalent_stress(sig).mean(axis=-1)
+            if "ep" in st:
+                cells["ep"][els] = st["ep"].mean(axis=-1)
         p = outdir / f"{stem}_{i:04d}.vtu"
         meshio.write(p, meshio.Mesh(points, [("quad", mesh.t.T)], point_data={"u": disp},
-                                    cell_data={"ep": [ep_cell], "region": [region]}))
+                                    cell_data={k: [v] for k, v in cells.items()}))
         paths.append(p)
+    entries = "\n".join(f'    <DataSet timestep="{i}" part="0" file="{p.name}"/>'
+                        for i, p in enumerate(paths))
+    (outdir / f"{stem}.pvd").write_text(
+        '<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n  <Collection>\n'
+        f"{entries}\n  </Collection>\n</VTKFile>\n")
     return paths

@@ -101,6 +101,9 @@ def _plasticity(spec: dict, where: str) -> Plasticity | None:
                              '(e.g. Y = "1.2 GPa")')
     kw: dict[str, Any] = {"Y": parse_quantity(spec["Y"], "pressure", name=f"{where}.Y"),
                           "hardening": str(spec.get("hardening", "perfect"))}
+    if kw["hardening"] == "linear" and "H" not in spec:
+        raise CoatHertzError(f'{where}: hardening = "linear" needs the hardening modulus H '
+                             '(H >= 0, e.g. H = "10 GPa")')
     if "H" in spec:
         kw["H"] = parse_quantity(spec["H"], "pressure", name=f"{where}.H")
     for k in ("n", "eps0"):

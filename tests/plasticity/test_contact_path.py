@@ -66,6 +66,17 @@ def test_outputs_json_vtu_and_iterations(cycle, tmp_path):
     assert max(cycle.curves["newton_iterations"]) <= 8
     paths = write_vtu_series(cycle, tmp_path)
     assert len(paths) == len(cycle.curves["W"]) and paths[-1].stat().st_size > 0
+    pvd = (tmp_path / "plastic.pvd").read_text()
+    assert all(f'file="{p.name}"' in pvd for p in paths)
+    import meshio
+
+    k = int(np.argmax(cycle.curves["W"]))  # peak load: perfectly plastic, so q <= Y at every point
+    m = meshio.read(paths[k])
+    q, ep = m.cell_data["sigma_eq"][0], m.cell_data["ep"][0]
+    assert q.max() <= Y * (1 + 1e-6), q.max() / Y
+    assert q[ep > 0].max() >= 0.9 * Y, q[ep > 0].max() / Y  # yielded elements sit near the surface
+    assert 0 < ep.max() <= cycle.curves["ep_max"][k] * (1 + 1e-12)
+    assert set(m.cell_data) >= {"sigma_rr", "sigma_zz", "sigma_tt", "sigma_rz", "sigma_eq", "ep", "region"}
 
 
 def test_plastic_increment_converges_quadratically():

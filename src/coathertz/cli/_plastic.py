@@ -16,7 +16,7 @@ from coathertz.errors import CoatHertzError
 
 def run_plastic(case: ContactCase, args: argparse.Namespace) -> int:
     from coathertz.fem.method import axisymmetric_equivalent
-    from coathertz.fem.plastic_method import solve_plastic, write_vtu_series
+    from coathertz.fem.plastic_method import PLASTIC_MESHES, solve_plastic, write_vtu_series
 
     eq = axisymmetric_equivalent(case)
     mats = []
@@ -26,7 +26,10 @@ def run_plastic(case: ContactCase, args: argparse.Namespace) -> int:
     if not any(m.plasticity is not None for m in mats):
         raise CoatHertzError("--plastic needs yield data in the case: add Y = \"1 GPa\" (and optionally "
                              "hardening) to the body's material or coating table")
-    mesh = args.mesh if args.mesh in ("coarse", "default", "fine") else "default"
+    if args.mesh not in PLASTIC_MESHES:
+        raise CoatHertzError(f"--mesh with --plastic must be one of {', '.join(PLASTIC_MESHES)}, "
+                             f"got {args.mesh!r}")
+    mesh = args.mesh
     total = args.steps * (1 + bool(args.unload or args.reload) + bool(args.reload))
     count = [0]
 
@@ -52,6 +55,19 @@ def run_plastic(case: ContactCase, args: argparse.Namespace) -> int:
 
         with writing(args.out_json, "--out-json"):
             res.write_json(args.out_json)
+    if getattr(args, "out_csv", None):
+        res.write_csv(args.out_csv)
+    if getattr(args, "plot_dir", None):
+        from pathlib import Path
+
+        from coathertz.fem.plastic_plot import plot_load_approach, plot_plastic_zone
+
+        d = Path(args.plot_dir)
+        d.mkdir(parents=True, exist_ok=True)
+        label = case.describe() if hasattr(case, "describe") else ""
+        plot_load_approach(res, d / "load_approach.png", f"load-approach, elastic-plastic FE ({mesh} mesh)")
+        plot_plastic_zone(res, d / "plastic_zone.png", f"plastic zone, elastic-plastic FE ({mesh} mesh)")
+        print(f"figures written to {d} ({label})" if label else f"figures written to {d}", file=sys.stderr)
     if args.json:
         print(json.dumps(res.to_json()["curves"] | {"meta": res.to_json()["meta"]}, indent=1))
         return 0
@@ -66,8 +82,11 @@ def run_plastic(case: ContactCase, args: argparse.Namespace) -> int:
               f"{c['p_max'][k] / 1e6:12.5g} {c['p_mean'][k] / 1e6:13.5g} {c['ep_max'][k]:9.3g} "
               f"{c['newton_iterations'][k]:6d}")
     z = res.final["plastic_zone"]
-    print(f"plastic zone: max ep = {z['ep_max']:.3g}, r <= {z['zone_r'] * 1e6:.4g} um, "
-          f"depth {z['zone_top'] * 1e6:.4g}-{z['zone_depth'] * 1e6:.4g} um")
+    if z["plastic_points"]:
+        print(f"plastic zone: max ep = {z['ep_max']:.3g}, r <= {z['zone_r'] * 1e6:.4g} um, "
+              f"depth {z['zone_top'] * 1e6:.4g}-{z['zone_depth'] * 1e6:.4g} um")
+    else:
+        print("plastic zone: none (no quadrature point yielded along the path)")
     if res.final.get("residual_depth") is not None:
         print(f"residual depth {res.final['residual_depth'] * 1e6:.5g} um")
         ex = res.final["residual"]["stress_extrema"]
@@ -77,6 +96,10 @@ def run_plastic(case: ContactCase, args: argparse.Namespace) -> int:
                 print(f"residual interface stress ({side} side): max sigma_1 "
                       f"{d['max_sigma_1'] / 1e6:.5g} MPa at r = {d['r_max_sigma_1'] * 1e6:.4g} um, "
                       f"max |sigma_rz| {d['max_abs_sigma_rz'] / 1e6:.5g} MPa")
+    if m.get("zone_growths"):
+        print(f"coathertz fem: note: the contact reached its candidate zone's edge "
+              f"(r <= {', '.join(f'{r * 1e6:.4g}' for r in m['zone_growths'])} um); the path was solved "
+              f"again on a grown mesh (a_ref = {m['a_ref'] * 1e6:.4g} um)", file=sys.stderr)
     if "validity" in m:
         print(f"coathertz fem: warning: {m['validity']}", file=sys.stderr)
     return 0

@@ -17,10 +17,15 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     from coathertz.fem.method import CONTACTS, SOLVERS
 
     add_case_arguments(parser)
+    from coathertz.fem.plastic_method import PLASTIC_MESHES
+
     levels = " / ".join(str(s.n_a) for s in MESH_LEVELS.values())
+    p_levels = " / ".join(str(s.n_a) for s in PLASTIC_MESHES.values())
     parser.add_argument("--mesh", default="default", choices=list(MESH_LEVELS),
                         help=f"mesh level: {levels} elements across the estimated contact radius "
-                             "(the output counts them across the computed a, which differs a little)")
+                             "(the output counts them across the computed a, which differs a little); "
+                             f"with --plastic {p_levels} across the largest contact radius estimated "
+                             "for the path")
     parser.add_argument("--contact", default="active-set", choices=list(CONTACTS),
                         help="contact formulation (default: active-set, exact)")
     parser.add_argument("--solver", default="direct", choices=list(SOLVERS),
@@ -33,9 +38,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     g.add_argument("--reload", action="store_true", help="reload to W after unloading")
     g.add_argument("--steps", type=int, default=10, help="load increments to W (default 10)")
     g.add_argument("--approach", metavar="DELTA", help="approach control to DELTA (e.g. '20 um') instead of "
-                   "load control (deep indentation); W only sizes the mesh")
-    g.add_argument("--vtu-dir", metavar="DIR", help="--plastic: one VTU per increment (plastic strain)")
+                   "load control (deep indentation); the mesh is sized from DELTA")
+    g.add_argument("--vtu-dir", metavar="DIR", help="--plastic: one VTU per increment (displacement, "
+                   "stresses, plastic strain) and a .pvd time series")
     g.add_argument("--out-json", metavar="OUT.json", help="--plastic: write the curves and profiles")
+    g.add_argument("--out-csv", metavar="OUT.csv", help="--plastic: write the curves (one row per increment)")
+    g.add_argument("--plot-dir", metavar="DIR", help="--plastic: load_approach.png and plastic_zone.png")
 
 
 def _solve(method, case):
@@ -80,13 +88,19 @@ def run(args: argparse.Namespace) -> int:
             raise CoatHertzError(f"--vtu {args.vtu!r}: the file name must end in .vtu (VTK "
                                  "unstructured grid for ParaView), e.g. --vtu mesh.vtu")
     if args.plastic:
+        if args.reload and not args.unload:
+            raise CoatHertzError("--reload reloads after unloading: give --unload as well")
         if not 1 <= args.steps <= 10_000:
             raise CoatHertzError("--steps: load increments to W must be an integer in [1, 10000], "
                                  f"got {args.steps}")
         if args.out_json:
             check_output_file(args.out_json, "--out-json")
+        if args.out_csv:
+            check_output_file(args.out_csv, "--out-csv")
         if args.vtu_dir:
             output_dir(args.vtu_dir, "--vtu-dir")
+        if args.plot_dir:
+            output_dir(args.plot_dir, "--plot-dir")
         from coathertz.cli._plastic import run_plastic
 
         return run_plastic(case, args)
