@@ -14,12 +14,12 @@ from pathlib import Path
 
 import numpy as np
 
+from coathertz.figstyle import save
+
 QLABEL = {"a": "a", "p": "$p_0$", "delta": r"$\delta$", "r_a": "$r_a$", "r_b": "$r_b$"}
 
 
 def _save(fig, outdir: Path, name: str) -> list[Path]:
-    from coathertz.report.plotting import save
-
     return save(fig, outdir, name)
 
 
@@ -33,7 +33,8 @@ def error_heatmaps(result, outdir: str | Path) -> list[Path]:
 
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
-    from matplotlib.colors import TwoSlopeNorm
+    from matplotlib.colors import SymLogNorm
+    from matplotlib.patches import Patch
 
     errors = [e for e in result.errors if "E" in e and "H" in e]
     paths: list[Path] = []
@@ -55,8 +56,18 @@ def error_heatmaps(result, outdir: str | Path) -> list[Path]:
                 if not math.isfinite(Z[i, k]) or abs(e["err"]) > abs(Z[i, k]):
                     Z[i, k] = e["err"]
             ax = axes[0, j]
+            # missing cells: hatched grey (white means 0 % on this diverging scale); errors span
+            # decades, so a symmetric-log scale linear below 0.1 % (docs/style-figures.md)
+            ax.patch.set_facecolor("0.85")
+            ax.patch.set_hatch("///")
+            ax.patch.set_edgecolor("0.6")
             im = ax.pcolormesh(np.arange(len(Hs) + 1), np.arange(len(Es) + 1), Z, cmap="RdBu_r",
-                               norm=TwoSlopeNorm(0.0, -vmax, vmax), shading="flat")
+                               norm=SymLogNorm(min(0.1, vmax), vmin=-vmax, vmax=vmax, base=10),
+                               shading="flat")
+            if np.isnan(Z).any():
+                ax.legend(handles=[Patch(facecolor="0.85", edgecolor="0.6", hatch="///",
+                                         label="not computed")],
+                          loc="upper center", bbox_to_anchor=(0.5, -0.32), fontsize=7, frameon=False)
             step_h = max(1, len(Hs) // 6)
             ax.set_xticks(np.arange(len(Hs))[::step_h] + 0.5, [f"{h:.2g}" for h in Hs[::step_h]], fontsize=7,
                           rotation=45)
@@ -65,9 +76,12 @@ def error_heatmaps(result, outdir: str | Path) -> list[Path]:
             ax.set_xlabel("H (eq 7)")
             ax.set_ylabel(r"E = $E_c^*/E_s^*$")
             ax.set_title(f"{QLABEL[q]}: max |err| {np.nanmax(np.abs(Z)):.2f} %", fontsize=9)
-            fig.colorbar(im, ax=ax, label="error [%]")
-        fig.suptitle(f"{result.name}: error of the closed form against the reference, {ref.upper()} "
-                     "(predicted - numerical)/numerical", fontsize=10)
+            cb = fig.colorbar(im, ax=ax, label="error [%]")
+            cb.ax.tick_params(labelsize=7)
+        ncase = len({e.get("case") for e in sel})
+        fig.suptitle(f"{result.name}: paper's closed-form rule vs reference {ref.upper()}, "
+                     f"{ncase} cases on the (E, H) grid: (predicted - reference)/reference, "
+                     "symmetric-log scale", fontsize=10)
         fig.tight_layout()
         paths += _save(fig, Path(outdir), f"{result.name}_errmap_{ref}")
     return paths
