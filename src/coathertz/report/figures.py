@@ -93,6 +93,7 @@ def pairwise_plot(result, outdir: str | Path, quantities: Sequence[str] | None =
 
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
     diffs = [d for d in result.crosscheck if quantities is None or d["quantity"] in quantities]
     if not diffs:
@@ -104,23 +105,37 @@ def pairwise_plot(result, outdir: str | Path, quantities: Sequence[str] | None =
     markers = dict(zip(qs, "os^vD", strict=False))
     for j, pair in enumerate(pairs):
         ax = axes[0, j]
+        # without H the cases are categories: positions 0, 1, ... labelled with the case ids
+        cases = list(dict.fromkeys(str(d["case"]) for d in diffs if d["pair"] == pair))
         for q in qs:
             sel = [d for d in diffs if d["pair"] == pair and d["quantity"] == q]
             if not sel:
                 continue
-            x = [d["H"] for d in sel] if use_h else list(range(len(sel)))
+            x = [d["H"] for d in sel] if use_h else [cases.index(str(d["case"])) for d in sel]
             ax.plot(x, [d["diff"] for d in sel], markers[q], ms=4, alpha=0.7, mfc="none", label=QLABEL[q])
         if use_h:
             ax.set_xscale("log")
+            # labels at 1, 2, 5 per decade in plain numbers; the default minor labels overlapped
+            hs = [d["H"] for d in diffs if d["pair"] == pair]
+            narrow = math.log10(max(hs) / min(hs)) < 2.0
+            ax.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0) if narrow else (1.0,)))
+            ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+            ax.xaxis.set_minor_formatter(NullFormatter())
+            ax.tick_params(axis="x", labelsize=7)
             ax.set_xlabel("H (eq 7)")
         else:
-            ax.set_xlabel("case")
+            step = max(1, math.ceil(len(cases) / 20))
+            few = len(cases) <= 6
+            ax.set_xticks(range(0, len(cases), step), cases[::step], rotation=0 if few else 90,
+                          fontsize=8 if few else 5.5)
+            ax.set_xlim(-0.5, len(cases) - 0.5)
+            ax.set_xlabel("case (categorical)")
         ax.axhline(0, color="k", lw=0.6)
         m, ref = pair.split(" vs ")
         ax.set_ylabel(f"{m} / {ref} - 1 [%]")
         ax.set_title(f"{pair} (reference)", fontsize=9)
         ax.grid(alpha=0.3, which="both")
-        ax.legend(fontsize=7)
+        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))  # off the data
     fig.suptitle(f"{result.name}: cross-checks, each method's difference from the case's reference "
                  "(the spread is the claims' numerical uncertainty)", fontsize=9)
     fig.tight_layout()
