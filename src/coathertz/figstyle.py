@@ -37,13 +37,16 @@ def save(fig, outdir: str | Path, name: str) -> list[Path]:
     return paths
 
 
-def figure(ncols: int, nrows: int = 1, width: float = 4.2, height: float = 3.4):
+def figure(ncols: int, nrows: int = 1, width: float = 4.2, height: float = 3.4, sharey: bool = False):
+    """A grid of ``nrows`` x ``ncols`` panels (``axes[row, col]``); ``sharey`` for panels comparing
+    the same quantity (docs/style-figures.md)."""
     import matplotlib
 
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(nrows, ncols, figsize=(width * ncols, height * nrows), squeeze=False)
+    fig, axes = plt.subplots(nrows, ncols, figsize=(width * ncols, height * nrows), squeeze=False,
+                             sharey=sharey)
     return fig, axes
 
 
