@@ -31,8 +31,8 @@ import pkgutil
 from types import ModuleType
 
 from coathertz.errors import CoatHertzError
+from coathertz.figstyle import colour, figure, method_handles, method_style, save, series
 from coathertz.methods import method_info, method_names, reference_for
-from coathertz.report.plotting import colour, figure, method_handles, method_style, save, series
 
 from .claims import bound_claim, judged_on, max_abs, plural, uncertainty_for
 from .paper import (

@@ -134,14 +134,19 @@ def plot(result: C.StudyResult, outdir) -> list:
             for m in numerical:
                 x, y = C.series(result.rows, m, "Ec_GPa", Ec, "H", f"{q}_bar")
                 if len(x):
-                    ax.plot(x, y, label=f"{C.method_info(m).label}, Ec = {Ec:g} GPa",
-                            **C.method_style(m, C.colour(i, len(Ecs))))
+                    # the bars do not depend on Ec (the collapse the figure shows): nested rings,
+                    # largest for the softest coating, so every modulus stays visible on the others
+                    kw = C.method_style(m, C.colour(i, len(Ecs)))
+                    kw.update(ms=max(3.0, 10.0 - 3.0 * i), mew=1.1,
+                              mfc=kw.get("color") if i == len(Ecs) - 1 else "none")
+                    ax.plot(x, y, label=f"{C.method_info(m).label}, Ec = {Ec:g} GPa", **kw)
         ax.set_xscale("log")
         ax.set_xlabel(r"$H = h/a_{0c}$")
         ax.set_ylabel(C.SYMBOL[q] + {"a": r" $= a/a_{0c}$", "p": r" $= p_0/p_{0c}$",
                                      "delta": r" $= \delta/\delta_{0c}$"}[q])
         ax.grid(alpha=0.3, which="both")
-    axes[0, 1].legend(fontsize=6.5)
+    fig.legend(*axes[0, 1].get_legend_handles_labels(), fontsize=6.5, loc="upper center",
+               bbox_to_anchor=(0.5, 0.0), ncol=4, frameon=False)
     fig.suptitle(r"Fig. 8: rigid substrate, $\nu_c = 0.3$; bars against H for several coating moduli",
                  fontsize=10)
     fig.tight_layout()

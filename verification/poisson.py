@@ -78,7 +78,7 @@ def analyse(result: C.StudyResult) -> None:
 def plot(result: C.StudyResult, outdir) -> list:
     Es = sorted({e["E"] for e in result.errors})
     nus = sorted({e["nu_c"] for e in result.errors})
-    fig, axes = C.figure(max(len(Es), 1), width=3.6, height=3.2)
+    fig, axes = C.figure(max(len(Es), 1), width=3.6, height=3.2, sharey=True)  # one error scale
     refs = sorted({e["reference"] for e in result.errors})
     for j, E in enumerate(Es):
         ax = axes[0, j]
@@ -96,10 +96,11 @@ def plot(result: C.StudyResult, outdir) -> list:
         ax.axhline(BOUND, color="k", ls="--", lw=0.8, label="paper: 3 %")
         ax.set_xscale("log")
         ax.set_xlabel(r"$H = h/a_{0s}$")
-        ax.set_ylabel(r"max$_q$ |error| of eqs (1), (17)-(19) [%]")
+        if j == 0:
+            ax.set_ylabel(r"max$_q$ |error| of eqs (1), (17)-(19) [%]")
         ax.set_title(f"E = {E:g}", fontsize=9)
         ax.grid(alpha=0.3, which="both")
-    axes[0, 0].legend(fontsize=7)
+    axes[0, -1].legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))  # off the data
     fig.suptitle(r"Poisson check: $\nu_s = 0.3$; error over a, p, $\delta$ against each case's reference ("
                  + ", ".join(C.method_info(r).label for r in refs) + ")", fontsize=10)
     fig.tight_layout()

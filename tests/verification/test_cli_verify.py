@@ -23,7 +23,9 @@ def report(tmp_path_factory):
 def test_report_files(report):
     html = (report / "index.html").read_text()
     md = (report / "summary.md").read_text()
-    assert html.index("<h2>Claims</h2>") < html.index("<h2>Provenance</h2>")
+    assert html.index("<h2>Headline</h2>") < html.index("<h2>Claims</h2>") < html.index("<h2>Provenance</h2>")
+    # the first screen links every study's section
+    assert "<a href='#fig3'>" in html and "<h2 id='fig3'>" in html
     assert html.count("data:image/png;base64,") >= 3  # self-contained
     assert "src=\"figures/" not in html
     assert md.splitlines()[0].startswith("# coathertz verification report")

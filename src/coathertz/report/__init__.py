@@ -22,6 +22,7 @@ from typing import Any
 from coathertz.jsonsafe import to_jsonable as json_safe
 from coathertz.report.baseline import Drift, baseline_dict, compare, write_baseline
 from coathertz.report.document import html_page, markdown
+from coathertz.verification import crosscheck_summary, group_by_case
 
 __all__ = ["Drift", "ReportFiles", "compare", "write_report"]
 
@@ -59,7 +60,6 @@ def side_by_side(rows: Sequence[dict], methods: Sequence[str], limit: int = 60) 
     """The bars of every case that all the study's registered ``methods`` solved, one row per case,
     methods in rank order (reference first)."""
     from coathertz.methods import rank_order
-    from coathertz.verification import group_by_case
 
     names = rank_order(methods)
     if len(names) < 2:
@@ -82,7 +82,6 @@ def write_report(
     """Write the full report of ``results`` (study results) into ``outdir``."""
     from coathertz.methods import method_names
     from coathertz.report.figures import error_heatmaps, pairwise_plot
-    from coathertz.verification import crosscheck_summary
 
     out = Path(outdir)
     figdir = out / "figures"

@@ -167,6 +167,11 @@ def html_page(results: Sequence[Any], provenance: dict, figures: dict[str, list[
            f"{e(str(provenance.get('date')))}, coathertz {e(str(provenance.get('version')))}, "
            f"commit {e(str(provenance.get('git_short', provenance.get('git_commit'))))}</p>",
            f"<p>{e(verdict_counts([row['verdict'] for row in claims_rows(results)]))}.</p>",
+           # first screen: one line per study with its verdicts and a link to its section
+           "<h2>Headline</h2><table class='headline'><tr><th>study</th><th>verdicts</th></tr>"
+           + "".join(f"<tr><td><a href='#{e(r.name)}'>{e(r.title)}</a></td>"
+                     f"<td>{e(verdict_counts([c.verdict for c in r.claims]))}</td></tr>" for r in results)
+           + "</table>",
            f"<h2>Claims</h2><p class='small'>{e(CLAIMS_NOTE)}</p>"
            "<table class='claims'><tr><th>study</th><th>claim</th><th>ours</th><th>uncertainty</th>"
            "<th>paper</th>"

@@ -14,12 +14,12 @@ from pathlib import Path
 
 import numpy as np
 
+from coathertz.figstyle import save
+
 QLABEL = {"a": "a", "p": "$p_0$", "delta": r"$\delta$", "r_a": "$r_a$", "r_b": "$r_b$"}
 
 
 def _save(fig, outdir: Path, name: str) -> list[Path]:
-    from coathertz.report.plotting import save
-
     return save(fig, outdir, name)
 
 
@@ -33,9 +33,14 @@ def error_heatmaps(result, outdir: str | Path) -> list[Path]:
 
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
-    from matplotlib.colors import TwoSlopeNorm
+    from matplotlib.colors import SymLogNorm
+    from matplotlib.patches import Patch
 
     errors = [e for e in result.errors if "E" in e and "H" in e]
+    # a rigid substrate has no modulus ratio (its cases carry E = 1): only elastic cases are mapped
+    configs = {e.get("config", "elastic") for e in errors}
+    if len(configs) > 1:
+        errors = [e for e in errors if e.get("config", "elastic") != "rigid"]
     paths: list[Path] = []
     for ref in sorted({e["reference"] for e in errors}):
         sel = [e for e in errors if e["reference"] == ref]
@@ -55,8 +60,18 @@ def error_heatmaps(result, outdir: str | Path) -> list[Path]:
                 if not math.isfinite(Z[i, k]) or abs(e["err"]) > abs(Z[i, k]):
                     Z[i, k] = e["err"]
             ax = axes[0, j]
+            # missing cells: hatched grey (white means 0 % on this diverging scale); errors span
+            # decades, so a symmetric-log scale linear below 0.1 % (docs/style-figures.md)
+            ax.patch.set_facecolor("0.85")
+            ax.patch.set_hatch("///")
+            ax.patch.set_edgecolor("0.6")
             im = ax.pcolormesh(np.arange(len(Hs) + 1), np.arange(len(Es) + 1), Z, cmap="RdBu_r",
-                               norm=TwoSlopeNorm(0.0, -vmax, vmax), shading="flat")
+                               norm=SymLogNorm(min(0.1, vmax), vmin=-vmax, vmax=vmax, base=10),
+                               shading="flat")
+            if np.isnan(Z).any():
+                ax.legend(handles=[Patch(facecolor="0.85", edgecolor="0.6", hatch="///",
+                                         label="not computed")],
+                          loc="upper center", bbox_to_anchor=(0.5, -0.32), fontsize=7, frameon=False)
             step_h = max(1, len(Hs) // 6)
             ax.set_xticks(np.arange(len(Hs))[::step_h] + 0.5, [f"{h:.2g}" for h in Hs[::step_h]], fontsize=7,
                           rotation=45)
@@ -65,9 +80,13 @@ def error_heatmaps(result, outdir: str | Path) -> list[Path]:
             ax.set_xlabel("H (eq 7)")
             ax.set_ylabel(r"E = $E_c^*/E_s^*$")
             ax.set_title(f"{QLABEL[q]}: max |err| {np.nanmax(np.abs(Z)):.2f} %", fontsize=9)
-            fig.colorbar(im, ax=ax, label="error [%]")
-        fig.suptitle(f"{result.name}: error of the closed form against the reference, {ref.upper()} "
-                     "(predicted - numerical)/numerical", fontsize=10)
+            cb = fig.colorbar(im, ax=ax, label="error [%]")
+            cb.ax.tick_params(labelsize=7)
+        ncase = len({e.get("case") for e in sel})
+        fig.suptitle(f"{result.name}: paper's closed-form rule vs reference {ref.upper()}, "
+                     f"{ncase} {'elastic-substrate ' if 'rigid' in configs else ''}cases on the (E, H) grid: "
+                     "(predicted - reference)/reference, "
+                     "symmetric-log scale", fontsize=10)
         fig.tight_layout()
         paths += _save(fig, Path(outdir), f"{result.name}_errmap_{ref}")
     return paths
@@ -79,6 +98,7 @@ def pairwise_plot(result, outdir: str | Path, quantities: Sequence[str] | None =
 
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
     diffs = [d for d in result.crosscheck if quantities is None or d["quantity"] in quantities]
     if not diffs:
@@ -90,23 +110,37 @@ def pairwise_plot(result, outdir: str | Path, quantities: Sequence[str] | None =
     markers = dict(zip(qs, "os^vD", strict=False))
     for j, pair in enumerate(pairs):
         ax = axes[0, j]
+        # without H the cases are categories: positions 0, 1, ... labelled with the case ids
+        cases = list(dict.fromkeys(str(d["case"]) for d in diffs if d["pair"] == pair))
         for q in qs:
             sel = [d for d in diffs if d["pair"] == pair and d["quantity"] == q]
             if not sel:
                 continue
-            x = [d["H"] for d in sel] if use_h else list(range(len(sel)))
+            x = [d["H"] for d in sel] if use_h else [cases.index(str(d["case"])) for d in sel]
             ax.plot(x, [d["diff"] for d in sel], markers[q], ms=4, alpha=0.7, mfc="none", label=QLABEL[q])
         if use_h:
             ax.set_xscale("log")
+            # labels at 1, 2, 5 per decade in plain numbers; the default minor labels overlapped
+            hs = [d["H"] for d in diffs if d["pair"] == pair]
+            narrow = math.log10(max(hs) / min(hs)) < 2.0
+            ax.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0) if narrow else (1.0,)))
+            ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+            ax.xaxis.set_minor_formatter(NullFormatter())
+            ax.tick_params(axis="x", labelsize=7)
             ax.set_xlabel("H (eq 7)")
         else:
-            ax.set_xlabel("case")
+            step = max(1, math.ceil(len(cases) / 20))
+            few = len(cases) <= 6
+            ax.set_xticks(range(0, len(cases), step), cases[::step], rotation=0 if few else 90,
+                          fontsize=8 if few else 5.5)
+            ax.set_xlim(-0.5, len(cases) - 0.5)
+            ax.set_xlabel("case (categorical)")
         ax.axhline(0, color="k", lw=0.6)
         m, ref = pair.split(" vs ")
         ax.set_ylabel(f"{m} / {ref} - 1 [%]")
         ax.set_title(f"{pair} (reference)", fontsize=9)
         ax.grid(alpha=0.3, which="both")
-        ax.legend(fontsize=7)
+        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))  # off the data
     fig.suptitle(f"{result.name}: cross-checks, each method's difference from the case's reference "
                  "(the spread is the claims' numerical uncertainty)", fontsize=9)
     fig.tight_layout()
