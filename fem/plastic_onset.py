@@ -63,11 +63,6 @@ class YieldOnset:
     def p0_over_Y(self) -> float:
         return self.p0_y / self.Y
 
-    def as_dict(self) -> dict:
-        d = {k: getattr(self, k) for k in self.__dataclass_fields__}
-        d["p0_over_Y"] = self.p0_over_Y
-        return d
-
 
 def _yield_stresses(case: ContactCase, Yc: float | None, Ys: float | None) -> tuple[float, float]:
     eq = axisymmetric_equivalent(case)

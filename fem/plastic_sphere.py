@@ -143,14 +143,6 @@ class HollowSphere:
         cnt = np.bincount(inv)
         return np.bincount(inv, rho) / cnt, np.bincount(inv, v) / cnt
 
-    def q_profile(self) -> tuple[np.ndarray, np.ndarray]:
-        """Von Mises stress against radius (mean over theta at each quadrature radius)."""
-        from coathertz.fem.j2 import equivalent_stress
-
-        sig, _, _ = self.law.stress(self.asm.strain(self.u, np.arange(self.mesh.t.shape[1])), self.states[0])
-        q = equivalent_stress(sig).ravel()
-        return self._levels(np.hypot(self.asm.rq, self.asm.zq).ravel(), q)
-
     def _q_rho3(self, mask_elastic: bool) -> float:
         """Volume-weighted mean of ``q rho^3`` over the (elastic) quadrature points. In an elastic
         shell under spherical symmetry (Lame) ``q rho^3`` is constant, equal to ``Y c^3`` at the

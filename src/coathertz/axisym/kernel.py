@@ -255,10 +255,6 @@ class PairCompliance:
             out += w * (F(k * h) - 1.0)
         return out
 
-    def M0(self) -> float:
-        """``M(0)``: the long-wavelength (substrate) limit."""
-        return float(self.M(np.zeros(1))[0])
-
 
 def pair_compliance(case: ContactCase, interface: str = "bonded") -> PairCompliance:
     """The pair compliance of ``case`` (both bodies; a rigid body adds nothing)."""
