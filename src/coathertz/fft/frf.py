@@ -165,7 +165,23 @@ def layer_factor_tm(t, coating: Material, substrate: Material, interface: str = 
         raise CoatHertzError(f"interface must be one of {INTERFACES}, got {interface!r}")
     t = np.asarray(t)
     shape = t.shape
-    tt = t.ravel()
+    M, L0, _ = layer_system(t.ravel(), coating, substrate, interface)
+    rhs = np.zeros(M.shape[:2], dtype=M.dtype)
+    rhs[:, 0] = -1.0  # sigma_zz(0) = -1, sigma_xz(0) = 0
+    x = np.linalg.solve(M, rhs[..., None])[..., 0]
+    Uz0 = sum(L0[j][1] * x[:, j] for j in range(4))
+    return (Uz0 / (2.0 * (1.0 - coating.nu))).reshape(shape)
+
+
+def layer_system(tt: np.ndarray, coating: Material, substrate: Material, interface: str):
+    """The 6 x 6 system of the layer on its substrate at ``tt = w h`` (1-D, real or complex):
+    rows 0, 1 the surface tractions ``sigma_zz(0)``, ``sigma_xz(0)`` (the caller's right-hand
+    side), rows 2-5 the interface conditions (bonded: ``u_x, u_z, sigma_zz, sigma_xz``
+    continuous; frictionless: ``u_z, sigma_zz`` continuous and ``sigma_xz = 0`` on both sides;
+    rigid substrate: ``u_x = u_z = 0`` or ``u_z = sigma_xz = 0``). Unknowns: the layer's
+    ``A, B, C, D`` and the substrate's decaying ``A, B`` (zero on a rigid one). Returns
+    ``(M, L0, Lh)``, the layer basis at ``z = 0`` and ``z = h`` included (the stress responses
+    of :mod:`coathertz.fft.stresses` solve the same system)."""
     n = tt.size
     dtype = np.result_type(tt.dtype, np.float64)
     nu_c = coating.nu
@@ -176,11 +192,9 @@ def layer_factor_tm(t, coating: Material, substrate: Material, interface: str = 
     L0 = [_columns(zero, nu_c, one if k in "AB" else eh, k) for k in "ABCD"]
     Lh = [_columns(tt, nu_c, eh if k in "AB" else one, k) for k in "ABCD"]
     M = np.zeros((n, 6, 6), dtype=dtype)
-    rhs = np.zeros((n, 6), dtype=dtype)
     for j in range(4):
-        M[:, 0, j] = L0[j][2]  # sigma_zz(0) = -1
-        M[:, 1, j] = L0[j][3]  # sigma_xz(0) = 0
-    rhs[:, 0] = -1.0
+        M[:, 0, j] = L0[j][2]  # sigma_zz(0)
+        M[:, 1, j] = L0[j][3]  # sigma_xz(0)
     if substrate.is_rigid:
         M[:, 4, 4] = 1.0
         M[:, 5, 5] = 1.0
@@ -188,28 +202,25 @@ def layer_factor_tm(t, coating: Material, substrate: Material, interface: str = 
         for r, q in zip((2, 3), rows, strict=True):
             for j in range(4):
                 M[:, r, j] = Lh[j][q]
-    else:
-        # 2 G_c = 1, 2 G_s = 1/mu: u = U in the layer, u = mu U in the substrate
-        mu = coating.G / substrate.G
-        nu_s = substrate.nu
-        S = [_columns(tt, nu_s, one, k) for k in "AB"]
-        scale = (mu, mu, 1.0, 1.0)
-        quantities = (0, 1, 2, 3) if interface == "bonded" else (1, 2)
-        r = 2
-        for q in quantities:
-            for j in range(4):
-                M[:, r, j] = Lh[j][q]
-            for j in range(2):
-                M[:, r, 4 + j] = -scale[q] * S[j][q]
-            r += 1
-        if interface == "frictionless":
-            for j in range(4):
-                M[:, 4, j] = Lh[j][3]  # sigma_xz = 0, layer side
-            for j in range(2):
-                M[:, 5, 4 + j] = S[j][3]  # sigma_xz = 0, substrate side
-    x = np.linalg.solve(M, rhs[..., None])[..., 0]
-    Uz0 = sum(L0[j][1] * x[:, j] for j in range(4))
-    return (Uz0 / (2.0 * (1.0 - nu_c))).reshape(shape)
+        return M, L0, Lh
+    # 2 G_c = 1, 2 G_s = 1/mu: u = U in the layer, u = mu U in the substrate
+    mu = coating.G / substrate.G
+    S = [_columns(tt, substrate.nu, one, k) for k in "AB"]
+    scale = (mu, mu, 1.0, 1.0)
+    quantities = (0, 1, 2, 3) if interface == "bonded" else (1, 2)
+    r = 2
+    for q in quantities:
+        for j in range(4):
+            M[:, r, j] = Lh[j][q]
+        for j in range(2):
+            M[:, r, 4 + j] = -scale[q] * S[j][q]
+        r += 1
+    if interface == "frictionless":
+        for j in range(4):
+            M[:, 4, j] = Lh[j][3]  # sigma_xz = 0, layer side
+        for j in range(2):
+            M[:, 5, 4 + j] = S[j][3]  # sigma_xz = 0, substrate side
+    return M, L0, Lh
 
 
 def taylor_coefficients(fun, n: int = 3, radius: float = 0.2, m: int = 64,

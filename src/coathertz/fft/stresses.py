@@ -76,7 +76,7 @@ from scipy import fft as sfft
 
 from coathertz.case import ContactCase, refuse_stack
 from coathertz.errors import CoatHertzError
-from coathertz.fft.frf import Layer, _columns
+from coathertz.fft.frf import Layer, layer_system
 from coathertz.fft.grid import Grid
 from coathertz.materials import Body
 from coathertz.results import ContactResult
@@ -132,41 +132,11 @@ class CoatedStressFRF:
         interface = self.layer.interface
         t = np.maximum(np.asarray(w, dtype=float).ravel() * self.h, T_MIN)
         n = t.size
-        nu_c = coating.nu
-        one, zero = np.ones(n), np.zeros(n)
+        M, _, _ = layer_system(t, coating, substrate, interface)
         eh = np.exp(-t)
-        L0 = [_columns(zero, nu_c, one if k in "AB" else eh, k) for k in "ABCD"]
-        Lh = [_columns(t, nu_c, eh if k in "AB" else one, k) for k in "ABCD"]
-        M = np.zeros((n, 6, 6))
         rhs = np.zeros((n, 6, 2))
-        for j in range(4):
-            M[:, 0, j] = L0[j][2]
-            M[:, 1, j] = L0[j][3]
         rhs[:, 0, 0] = -1.0  # normal: sigma_zz(0) = -P
         rhs[:, 1, 1] = 1.0  # tangential: row kz(0) = Q, i.e. sigma_xz(0) = -Q cos kx
-        if substrate.is_rigid:
-            M[:, 4, 4] = M[:, 5, 5] = 1.0
-            rows = (0, 1) if interface == "bonded" else (1, 3)
-            for r, q in zip((2, 3), rows, strict=True):
-                for j in range(4):
-                    M[:, r, j] = Lh[j][q]
-        else:
-            mu = coating.G / substrate.G
-            S = [_columns(t, substrate.nu, one, k) for k in "AB"]
-            scale = (mu, mu, 1.0, 1.0)
-            quantities = (0, 1, 2, 3) if interface == "bonded" else (1, 2)
-            r = 2
-            for q in quantities:
-                for j in range(4):
-                    M[:, r, j] = Lh[j][q]
-                for j in range(2):
-                    M[:, r, 4 + j] = -scale[q] * S[j][q]
-                r += 1
-            if interface == "frictionless":
-                for j in range(4):
-                    M[:, 4, j] = Lh[j][3]
-                for j in range(2):
-                    M[:, 5, 4 + j] = S[j][3]
         x = np.linalg.solve(M, rhs)
         # antiplane: U = a e^{-kz} + b e^{-k(h-z)} (coating), c e^{-k(z-h)} (substrate);
         # alpha = G_c k a / Q etc.: -alpha + beta e^{-t} = -1 (sigma_pz(0) = -Q), and
