@@ -249,8 +249,9 @@ class FEMMethod:
         h = body.coating.h if body.is_coated else 0.0
         rigid_base = body.material.is_rigid
         size = mesh_size(a_ref, h, self.spec, rigid_base)
-        c_mixed = h > 0 and self._is_mixed(body.coating.material)
-        s_mixed = not rigid_base and self._is_mixed(body.material)
+        mats = body.deformable_materials  # coating (if any), then an elastic substrate
+        c_mixed = h > 0 and self._is_mixed(mats[0])
+        s_mixed = not rigid_base and self._is_mixed(mats[-1])
         dofs, mem = estimate_memory(size, c_mixed, s_mixed)
         limit = self.max_memory_gb * 2**30
         if mem <= limit:

@@ -301,7 +301,7 @@ def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_sn
     body = eq.body
     h = body.coating.h if body.is_coated else 0.0
     rigid_base = body.material.is_rigid
-    mats = ([body.coating.material] if h > 0 else []) + ([] if rigid_base else [body.material])
+    mats = list(body.deformable_materials)
     for m in mats:
         if m.nu >= 0.5:
             raise CoatHertzError(f"the elastic-plastic model needs nu < 0.5 (B-bar form), got nu = {m.nu}")

@@ -403,6 +403,14 @@ class Body:
         return (Layer(self.coating.material, self.coating.h, self.coating.interface),)
 
     @property
+    def deformable_materials(self) -> tuple[Material, ...]:
+        """The materials an FE model of this body meshes, top first: the coating (if any, of
+        positive thickness), then the substrate unless it is rigid. The one place the FE, its
+        plastic path and the CLI read which materials are in the model."""
+        top = (self.coating.material,) if self.is_coated else ()
+        return top + (() if self.material.is_rigid else (self.material,))
+
+    @property
     def is_coated(self) -> bool:
         return self.coating is not None and self.coating.h > 0
 

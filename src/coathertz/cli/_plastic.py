@@ -19,10 +19,7 @@ def run_plastic(case: ContactCase, args: argparse.Namespace) -> int:
     from coathertz.fem.plastic_method import PLASTIC_MESHES, solve_plastic, write_vtu_series
 
     eq = axisymmetric_equivalent(case)
-    mats = []
-    if eq is not None:
-        b = eq.body
-        mats = ([b.coating.material] if b.is_coated else []) + ([] if b.material.is_rigid else [b.material])
+    mats = eq.body.deformable_materials if eq is not None else ()
     if not any(m.plasticity is not None for m in mats):
         raise CoatHertzError("--plastic needs yield data in the case: add Y = \"1 GPa\" (and optionally "
                              "hardening) to the body's material or coating table")
