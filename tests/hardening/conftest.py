@@ -46,3 +46,20 @@ def bad_inputs(tmp_path, monkeypatch):
     write_case(tmp_path, "W_neg.toml", W="-1 N")
     write_case(tmp_path, "Ec_neg.toml", Ec="-380 GPa")
     return tmp_path
+
+
+def _check_one_clear_line(rc: int, err: str, argv: list[str], words: list[str]) -> None:
+    """Exit status 2 and one line ``coathertz CMD: error: ...`` holding every one of ``words``."""
+    assert rc == 2, f"exit status {rc}; stderr: {err}"
+    assert "Traceback" not in err
+    assert len(err.splitlines()) == 1, err
+    assert err.startswith(f"coathertz {argv[0]}: error: "), err
+    for w in words:
+        assert w in err, f"{w!r} not in {err!r}"
+
+
+@pytest.fixture
+def one_clear_line():
+    """The check every bad-input table applies to a refused command (see
+    :func:`_check_one_clear_line`)."""
+    return _check_one_clear_line

@@ -72,17 +72,11 @@ TABLE = [
 
 
 @pytest.mark.parametrize(("argv", "words"), [(a, w) for _, a, w in TABLE], ids=[t[0] for t in TABLE])
-def test_bad_input_gives_one_clear_line(inputs, capsys, argv, words):
+def test_bad_input_gives_one_clear_line(inputs, capsys, one_clear_line, argv, words):
     t0 = time.perf_counter()
     rc = main(argv)
     dt = time.perf_counter() - t0
-    err = capsys.readouterr().err.strip()
-    assert rc == 2, f"exit status {rc}; stderr: {err}"
-    assert "Traceback" not in err
-    assert len(err.splitlines()) == 1, err
-    assert err.startswith(f"coathertz {argv[0]}: error: "), err
-    for w in words:
-        assert w in err, f"{w!r} not in {err!r}"
+    one_clear_line(rc, capsys.readouterr().err.strip(), argv, words)
     assert not (inputs / "v").exists(), "the --out folder was created before the input was checked"
     assert not (inputs / "mesh.txt").exists()
     assert dt < 5.0, f"{dt:.1f} s: the command computed before refusing its input"

@@ -59,16 +59,9 @@ TABLE = [
 
 
 @pytest.mark.parametrize(("argv", "words"), [(a, w) for _, a, w in TABLE], ids=[t[0] for t in TABLE])
-def test_bad_input_gives_one_clear_line(bad_inputs, capsys, argv, words):
+def test_bad_input_gives_one_clear_line(bad_inputs, capsys, one_clear_line, argv, words):
     rc = main(argv)
-    cap = capsys.readouterr()
-    err = cap.err.strip()
-    assert rc == 2, f"exit status {rc}; stderr: {err}"
-    assert "Traceback" not in err
-    assert len(err.splitlines()) == 1, err
-    assert err.startswith(f"coathertz {argv[0]}: error: "), err
-    for w in words:
-        assert w in err, f"{w!r} not in {err!r}"
+    one_clear_line(rc, capsys.readouterr().err.strip(), argv, words)
     assert not (bad_inputs / "nodir").exists()
 
 
