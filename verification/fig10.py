@@ -167,5 +167,5 @@ def plot(result: C.StudyResult, outdir) -> list:
     axes[0, 1].legend(handles=C.method_handles(result.methods), fontsize=7)
     fig.suptitle("Fig. 10: elliptical contact, Rx = 17.4 mm, Ry = 3 mm, W = 400 N; top: rigid indenter, "
                  "bottom: elastic indenter", fontsize=10)
-    fig.tight_layout()
+    fig.set_layout_engine("tight")  # laid out when drawn, in the render process
     return C.save(fig, outdir, "fig10")

@@ -163,5 +163,5 @@ def plot(result: C.StudyResult, outdir) -> list:
         axes[0, 1].legend(fontsize=7, ncol=2, title="lines: eqs (1), (17)-(19); dashed: 'eq21-fill' reading",
                           title_fontsize=7)
     fig.suptitle("Fig. 3: rigid sphere on a coated elastic half-space, $\\nu_c = \\nu_s = 0.3$", fontsize=10)
-    fig.tight_layout()
+    fig.set_layout_engine("tight")  # laid out when drawn, in the render process
     return C.save(fig, outdir, "fig3")

@@ -106,5 +106,5 @@ def plot(result: C.StudyResult, outdir) -> list:
     fig.suptitle("Fig. 5: Appendix A alpha curves (lines) and alpha inverted from our results (markers, "
                  "error "
                  "bars from the bars' uncertainty; grey: H <= 0.02, ill-conditioned)", fontsize=9)
-    fig.tight_layout()
+    fig.set_layout_engine("tight")  # laid out when drawn, in the render process
     return C.save(fig, outdir, "fig5")

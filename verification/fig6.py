@@ -128,5 +128,5 @@ def plot(result: C.StudyResult, outdir) -> list:
     ax.grid(alpha=0.3, which="both")
     ax.legend(handles=C.method_handles(methods, closed_form_line=False), fontsize=7, loc="upper right")
     fig.suptitle("Fig. 6: Stevanovic et al.'s variables (eq 20) and eq (12)", fontsize=10)
-    fig.tight_layout()
+    fig.set_layout_engine("tight")  # laid out when drawn, in the render process
     return C.save(fig, outdir, "fig6")

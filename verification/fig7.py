@@ -195,5 +195,5 @@ def plot(result: C.StudyResult, outdir) -> list:
     # below the axes in two columns (beside them it took half the width; docs/style-figures.md)
     ax.legend(fontsize=6.5, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2, frameon=False)
     ax.set_title("Fig. 7: rigid substrate, rigid sphere (dotted line: tau = 0.2)", fontsize=10)
-    fig.tight_layout()
+    fig.set_layout_engine("tight")  # laid out when drawn, in the render process
     return C.save(fig, outdir, "fig7")

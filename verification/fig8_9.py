@@ -149,7 +149,7 @@ def plot(result: C.StudyResult, outdir) -> list:
                bbox_to_anchor=(0.5, 0.0), ncol=4, frameon=False)
     fig.suptitle(r"Fig. 8: rigid substrate, $\nu_c = 0.3$; bars against H for several coating moduli",
                  fontsize=10)
-    fig.tight_layout()
+    fig.set_layout_engine("tight")  # laid out when drawn, in the render process
     paths += C.save(fig, outdir, "fig8")
     inv = result.extra.get("alpha", [])
     fig, axes = C.figure(3, width=4.4, height=3.6)
@@ -178,6 +178,6 @@ def plot(result: C.StudyResult, outdir) -> list:
     axes[0, 2].legend(fontsize=7)
     fig.suptitle("Fig. 9: rigid-substrate alpha curves and alpha inverted from our results (error bars from "
                  "the bars' uncertainty; grey: H <= 0.02)", fontsize=9)
-    fig.tight_layout()
+    fig.set_layout_engine("tight")  # laid out when drawn, in the render process
     paths += C.save(fig, outdir, "fig9")
     return paths

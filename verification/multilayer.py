@@ -128,5 +128,5 @@ def plot(result: C.StudyResult, outdir) -> list:
     axes[0, -1].legend(fontsize=6, loc="center left", bbox_to_anchor=(1.02, 0.5))
     fig.suptitle("Layer stacks: 3 um TiN over an interlayer on steel, rigid sphere R = 5 mm, W = 2 N; "
                  "change against TiN alone (lines: reference, markers: other methods)", fontsize=9)
-    fig.tight_layout()
+    fig.set_layout_engine("tight")  # laid out when drawn, in the render process
     return C.save(fig, outdir, "multilayer")

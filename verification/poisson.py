@@ -103,5 +103,5 @@ def plot(result: C.StudyResult, outdir) -> list:
     axes[0, -1].legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))  # off the data
     fig.suptitle(r"Poisson check: $\nu_s = 0.3$; error over a, p, $\delta$ against each case's reference ("
                  + ", ".join(C.method_info(r).label for r in refs) + ")", fontsize=10)
-    fig.tight_layout()
+    fig.set_layout_engine("tight")  # laid out when drawn, in the render process
     return C.save(fig, outdir, "poisson")

@@ -216,6 +216,6 @@ def plot(result: C.StudyResult, outdir) -> list:
             ax.set_ylabel(f"|error| [%] (floored at {FLOOR:g} %)")
             ax.set_title(f"{cfg}: all quantities", fontsize=9)
             ax.legend(fontsize=7)
-        fig.tight_layout()
+        fig.set_layout_engine("tight")  # laid out when drawn, in the render process
         paths += C.save(fig, outdir, "refit_rigid_ellipse")
     return paths

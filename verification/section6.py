@@ -190,5 +190,5 @@ def plot(result: C.StudyResult, outdir) -> list:
                  f"reference ({', '.join(C.method_info(r).label for r in refs)})", fontsize=9)
     if notes:
         fig.text(0.5, -0.2, "\n".join(notes), ha="center", va="top", fontsize=7)
-    fig.tight_layout()
+    fig.set_layout_engine("tight")  # laid out when drawn, in the render process
     return C.save(fig, outdir, "section6")

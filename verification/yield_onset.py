@@ -222,5 +222,5 @@ def plot(result: C.StudyResult, outdir) -> list:
         ax.margins(0.15)
         if ax is axes[0, 0]:
             ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.18), ncol=3, markerscale=0.4)
-    fig.tight_layout()
+    fig.set_layout_engine("tight")  # laid out when drawn, in the render process
     return C.save(fig, outdir, "yield_onset")

@@ -8,32 +8,153 @@ The rules these helpers serve are in ``docs/style-figures.md``.
 
 from __future__ import annotations
 
+import contextlib
 import math
+import os
+import signal
+import sys
 from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-__all__ = ["colour", "figure", "method_handles", "method_style", "save", "series"]
+__all__ = ["DEFAULT_FORMATS", "colour", "figure", "method_handles", "method_style", "save", "saving",
+           "series"]
+
+
+#: The formats :func:`save` writes unless a :func:`saving` block says otherwise. PNG is what the
+#: report embeds; SVG (vector copies for papers) is opt-in (``coathertz verify --svg``): it costs as
+#: much again as the PNG.
+DEFAULT_FORMATS: tuple[str, ...] = ("png",)
+
+
+@dataclass
+class _Saving:
+    """State of a :func:`saving` block: the formats and the running render processes."""
+
+    formats: tuple[str, ...]
+    jobs: int
+    running: dict[int, str] = field(default_factory=dict)  # pid -> figure name
+    failed: list[str] = field(default_factory=list)
+
+    def reap(self, block: bool) -> None:
+        """Collect this block's finished render processes; with ``block``, wait for the oldest.
+        (Only its own children are waited for: a worker pool of the caller is left alone.)"""
+        for pid in list(self.running):
+            done, status = os.waitpid(pid, 0 if block else os.WNOHANG)
+            if done == 0:
+                continue
+            name = self.running.pop(pid)
+            if os.waitstatus_to_exitcode(status) != 0:
+                self.failed.append(name)
+            if block:
+                return
+
+    def stop(self) -> None:
+        """Kill and collect every render process still running (the block is being left early)."""
+        for pid in self.running:
+            with contextlib.suppress(ProcessLookupError):
+                os.kill(pid, signal.SIGKILL)
+        for pid in list(self.running):
+            with contextlib.suppress(ChildProcessError):
+                os.waitpid(pid, 0)
+        self.running.clear()
+
+
+_SAVING: _Saving | None = None
+
+
+def _cpus() -> int:
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # pragma: no cover - not Linux
+        return os.cpu_count() or 1
+
+
+@contextlib.contextmanager
+def saving(formats: Sequence[str] = DEFAULT_FORMATS, jobs: int | None = None):
+    """Within this block :func:`save` writes ``formats`` and renders each figure in a forked
+    process, up to ``jobs`` at once (default: the CPUs this process may use), while the caller goes
+    on drawing the next one. Leaving the block waits for every render; a render that failed raises
+    :class:`~coathertz.errors.CoatHertzError` naming the figure. Where ``os.fork`` does not exist
+    or ``jobs == 1``, figures are rendered in this process."""
+    global _SAVING
+    from coathertz.errors import CoatHertzError
+
+    bad = [f for f in formats if f not in ("png", "svg")]
+    if bad or not formats:
+        raise CoatHertzError(f"figure formats must be among png, svg; got {list(formats)}")
+    jobs = _cpus() if jobs is None else max(1, int(jobs))
+    if not hasattr(os, "fork"):  # pragma: no cover - not POSIX
+        jobs = 1
+    outer, _SAVING = _SAVING, _Saving(tuple(formats), jobs)
+    state = _SAVING
+    try:
+        yield state
+        while state.running:
+            state.reap(block=True)
+    except BaseException:
+        state.stop()
+        raise
+    finally:
+        _SAVING = outer
+    if state.failed:
+        raise CoatHertzError(f"could not render figure(s) {', '.join(sorted(state.failed))} "
+                             "(the reason is printed above)")
+
+
+def _write(fig, paths: Sequence[Path]) -> None:
+    """Write ``fig`` to ``paths``. A figure with a layout engine is laid out as it is drawn, with
+    its title wrapped to its width, and written as laid out; one without is cropped to its
+    drawn content (``bbox_inches="tight"``, a second drawing pass)."""
+    import matplotlib
+
+    engine = fig.get_layout_engine() is not None
+    title = getattr(fig, "_suptitle", None)  # matplotlib keeps the suptitle's Text here
+    if engine and title is not None:
+        title.set_wrap(True)
+    with matplotlib.rc_context({"svg.hashsalt": "coathertz"}):
+        for p in paths:
+            svg = p.suffix == ".svg"
+            fig.savefig(p, dpi=None if svg else 150, bbox_inches=None if engine else "tight",
+                        metadata={"Date": None} if svg else None)
 
 
 def save(fig, outdir: str | Path, name: str) -> list[Path]:
-    """Save ``fig`` as PNG (150 dpi) and SVG in ``outdir``; close it. Byte-for-byte reproducible:
-    no date in the SVG, fixed SVG ids (a rerun with equal numbers leaves a published report unchanged)."""
-    import matplotlib
+    """Save ``fig`` as ``outdir/name.png`` (150 dpi), and ``.svg`` where a :func:`saving` block
+    asks for it; close it. Byte-for-byte reproducible: no date in the SVG, fixed SVG ids (a rerun
+    with equal numbers leaves a published report unchanged). Inside a :func:`saving` block with
+    more than one job the files are complete only when the block ends."""
     import matplotlib.pyplot as plt
 
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
-    paths = []
-    with matplotlib.rc_context({"svg.hashsalt": "coathertz"}):
-        for ext in ("png", "svg"):
-            p = outdir / f"{name}.{ext}"
-            fig.savefig(p, dpi=150 if ext == "png" else None, bbox_inches="tight",
-                        metadata={"Date": None} if ext == "svg" else None)
-            paths.append(p)
+    state = _SAVING
+    paths = [outdir / f"{name}.{ext}" for ext in (state.formats if state else DEFAULT_FORMATS)]
+    if state is None or state.jobs == 1:
+        _write(fig, paths)
+        plt.close(fig)
+        return paths
+    while len(state.running) >= state.jobs:
+        state.reap(block=True)
+    sys.stdout.flush()
+    sys.stderr.flush()
+    pid = os.fork()
+    if pid == 0:  # the render process: write the files and leave without running any cleanup
+        code = 1
+        try:
+            signal.signal(signal.SIGINT, signal.SIG_DFL)
+            _write(fig, paths)
+            code = 0
+        except BaseException as exc:  # one line, the parent names the figure again and raises
+            print(f"coathertz: figure {name}: {type(exc).__name__}: {exc}", file=sys.stderr, flush=True)
+        finally:
+            os._exit(code)
+    state.running[pid] = name
     plt.close(fig)
+    state.reap(block=False)
     return paths
 
 

@@ -16,6 +16,7 @@ F0, F1, F2
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -152,6 +153,19 @@ def solve_zeta(Rx_over_Ry: ArrayLike) -> ArrayLike:
         raise CoatHertzError(f"Rx/Ry must satisfy 1 <= Rx/Ry < inf (Rx major), got {q}")
     if np.all(q == 1.0):  # circular: skip the bisection (studies call this per case)
         return _out(np.ones(q.shape))
+    if q.ndim == 0:  # one case at a time (studies, figures): the same few ratios recur
+        return _solve_zeta_scalar(float(q))
+    return _bisect_zeta(q)
+
+
+@functools.lru_cache(maxsize=4096)
+def _solve_zeta_scalar(q: float) -> float:
+    """:func:`solve_zeta` of one ratio, memoised (the result is a pure function of ``q``)."""
+    return float(_bisect_zeta(np.asarray(q)))
+
+
+def _bisect_zeta(q: np.ndarray) -> ArrayLike:
+    """The vectorised bisection of :func:`solve_zeta` (80 halvings of [1e-12, 1] in log zeta)."""
     lo = np.full(q.shape, math.log(1e-12))
     hi = np.zeros(q.shape)
     target = np.log(q)

@@ -21,4 +21,4 @@ def test_tiny_multilayer_study(tmp_path):
     agree = next(c for c in r.claims if c.id == "multilayer-methods-agree")
     assert agree.value < 0.5, agree  # fft (tiny grid) vs axisym, percent
     paths = mod.plot(r, tmp_path)
-    assert {p.suffix for p in paths} == {".png", ".svg"} and all(p.stat().st_size > 5000 for p in paths)
+    assert {p.suffix for p in paths} == {".png"} and all(p.stat().st_size > 5000 for p in paths)

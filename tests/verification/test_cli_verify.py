@@ -32,7 +32,7 @@ def test_report_files(report):
     assert md.index("## Claims") < md.index("## Provenance")
     for key in ("version", "git_commit", "date", "resolution: tiny", "machine", "total_run_time"):
         assert key in md
-    for name in ("fig3.png", "fig3.svg", "fig3_errmap_fft.png", "section6.png"):
+    for name in ("fig3.png", "fig3_errmap_fft.png", "section6.png"):
         assert (report / "figures" / name).stat().st_size > 5000
     assert not (report / "figures" / "fig3_pairwise.png").exists()  # one numerical method: no cross-check
     results = json.loads((report / "results.json").read_text())

@@ -35,7 +35,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="baseline.json of an earlier run: exit 1 if a claim moved beyond its tolerance")
     parser.add_argument("--scheduler", metavar="ADDR",
                         help="dask.distributed scheduler, e.g. tcp://host:8786 (needs coathertz[dask])")
-    parser.add_argument("--workers", type=int, default=2, help="local worker processes (default 2)")
+    parser.add_argument("--workers", type=int, default=2,
+                        help="local worker processes, for the cases and for rendering figures (default 2)")
+    parser.add_argument("--svg", action="store_true",
+                        help="also write every figure as SVG (vector copies; the report embeds the PNGs)")
     parser.add_argument("--store", type=Path, help="result store (default OUT/store.sqlite)")
     parser.add_argument("--retry-errors", action="store_true", help="rerun cases stored as failed")
     parser.add_argument("--recover-store", action="store_true",
@@ -85,8 +88,9 @@ def check_scheduler(address: str) -> str:
 def run(args: argparse.Namespace) -> int:
     from coathertz.cli._common import output_dir, writing
     from coathertz.errors import CoatHertzError
+    from coathertz.figstyle import saving
     from coathertz.methods import method_info, method_names
-    from coathertz.report import write_report
+    from coathertz.report import plot_study, write_report
     from coathertz.report.baseline import load_baseline
     from coathertz.report.document import verdict_counts
     from coathertz.report.provenance import collect
@@ -131,13 +135,20 @@ def run(args: argparse.Namespace) -> int:
     old = signal.signal(signal.SIGTERM, _sigterm)
     t0 = time.perf_counter()
     results = []
+    figures: dict[str, list[Path]] = {}
+    figdir = out / "figures"
     try:
-        for mod in mods:
-            r = run_study(mod, args.resolution, methods, store, opts)
-            results.append(r)
-            n = len({x['case'] for x in r.rows})
-            print(study_line(r.name, n, r.computed, r.reused, r.wall_time) + "  claims: "
-                  + verdict_counts([c.verdict for c in r.claims]), flush=True)
+        # each study's figures are drawn as soon as it is done and rendered in the background
+        # while the next study runs (the block ends when every render has finished)
+        with saving(("png", "svg") if args.svg else ("png",), 1 if args.scheduler else args.workers):
+            for mod in mods:
+                r = run_study(mod, args.resolution, methods, store, opts)
+                results.append(r)
+                n = len({x['case'] for x in r.rows})
+                print(study_line(r.name, n, r.computed, r.reused, r.wall_time) + "  claims: "
+                      + verdict_counts([c.verdict for c in r.claims]), flush=True)
+                with writing(figdir, "--out"):
+                    figures[r.name] = plot_study(r, mod, figdir)
     except KeyboardInterrupt:
         print(f"coathertz verify: interrupted; {store.count()} results are in {store.path}; "
               "run the same command again to resume", file=sys.stderr)
@@ -157,10 +168,12 @@ def run(args: argparse.Namespace) -> int:
             store.export_json(out / "store.json")
     finally:
         store.close()
+    t1 = time.perf_counter()
     with writing(out, "--out"):  # a full disk: the folder named, not a traceback
-        files = write_report(results, out, prov, {m.NAME: m for m in mods}, baseline, notes)
+        files = write_report(results, out, prov, {m.NAME: m for m in mods}, baseline, notes,
+                             figures=figures)
     print(f"all studies: {verdict_counts([c.verdict for r in results for c in r.claims])}")
-    print(f"report: {files.html} ({total:.1f} s)")
+    print(f"report: {files.html} (studies and figures {total:.1f} s, pages {time.perf_counter() - t1:.1f} s)")
     if files.drift is not None:
         if files.drifted:
             print(f"regression: {len(files.drifted)} claim(s) moved beyond tolerance:")

@@ -24,7 +24,7 @@ from coathertz.report.baseline import Drift, baseline_dict, compare, write_basel
 from coathertz.report.document import html_page, markdown
 from coathertz.verification import crosscheck_summary, group_by_case
 
-__all__ = ["Drift", "ReportFiles", "compare", "write_report"]
+__all__ = ["Drift", "ReportFiles", "compare", "plot_study", "write_report"]
 
 
 @dataclass
@@ -71,6 +71,26 @@ def side_by_side(rows: Sequence[dict], methods: Sequence[str], limit: int = 60) 
     return out[:limit]
 
 
+def plot_study(result: Any, module: Any | None, figdir: str | Path) -> list[Path]:
+    """Draw the figures of one study result: the study module's own (``module.plot``) and the
+    report's E x H error maps and pairwise plots, unless the module sets ``GENERIC_FIGURES =
+    False``. Also stores the cross-check summaries the pages show in ``result.extra``. Inside a
+    :func:`coathertz.figstyle.saving` block the files are rendered in the background."""
+    from coathertz.methods import method_names
+    from coathertz.report.figures import error_heatmaps, pairwise_plot
+
+    figdir = Path(figdir)
+    paths: list[Path] = list(module.plot(result, figdir)) if module is not None else []
+    if getattr(module, "GENERIC_FIGURES", True):  # studies re-using another's cases opt out
+        paths += error_heatmaps(result, figdir)
+        paths += pairwise_plot(result, figdir)
+        result.extra["pairwise"] = crosscheck_summary(result.crosscheck)
+        registered = set(method_names())
+        result.extra["side_by_side"] = side_by_side(result.rows,
+                                                    [m for m in result.methods if m in registered])
+    return paths
+
+
 def write_report(
     results: Sequence[Any],
     outdir: str | Path,
@@ -78,31 +98,31 @@ def write_report(
     modules: dict[str, Any] | None = None,
     baseline: dict | None = None,
     notes: Sequence[str] = (),
+    svg: bool = False,
+    jobs: int | None = None,
+    figures: dict[str, list[Path]] | None = None,
 ) -> ReportFiles:
-    """Write the full report of ``results`` (study results) into ``outdir``."""
-    from coathertz.methods import method_names
-    from coathertz.report.figures import error_heatmaps, pairwise_plot
+    """Write the full report of ``results`` (study results) into ``outdir``.
+
+    ``figures`` are the studies' figure files where they were already drawn (by
+    :func:`plot_study` into ``outdir/figures``, as ``coathertz verify`` does while the next study
+    runs); otherwise they are drawn here: PNG (what the pages embed), with SVG copies if ``svg``,
+    rendered by up to ``jobs`` processes at once (default: the CPUs this process may use).
+    """
+    from coathertz.figstyle import saving
 
     out = Path(outdir)
     figdir = out / "figures"
     figdir.mkdir(parents=True, exist_ok=True)
     (out / "rows").mkdir(exist_ok=True)
-    figures: dict[str, list[Path]] = {}
-    docs = {}
+    mods = modules or {}
+    docs = {r.name: inspect.getdoc(mods[r.name]) or "" for r in results if r.name in mods}
+    if figures is None:
+        figures = {}
+        with saving(("png", "svg") if svg else ("png",), jobs):  # every render done at the end
+            for r in results:
+                figures[r.name] = plot_study(r, mods.get(r.name), figdir)
     for r in results:
-        mod = (modules or {}).get(r.name)
-        paths: list[Path] = []
-        if mod is not None:
-            paths += list(mod.plot(r, figdir))
-            docs[r.name] = inspect.getdoc(mod) or ""
-        generic = getattr(mod, "GENERIC_FIGURES", True)  # studies re-using another's cases opt out
-        if generic:
-            paths += error_heatmaps(r, figdir)
-            paths += pairwise_plot(r, figdir)
-            r.extra["pairwise"] = crosscheck_summary(r.crosscheck)
-            registered = set(method_names())
-            r.extra["side_by_side"] = side_by_side(r.rows, [m for m in r.methods if m in registered])
-        figures[r.name] = paths
         _write_csv(out / "rows" / f"{r.name}.csv", r.rows)
         _write_csv(out / "rows" / f"{r.name}_errors.csv", r.errors)
     current = baseline_dict(results, provenance)

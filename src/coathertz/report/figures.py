@@ -87,7 +87,7 @@ def error_heatmaps(result, outdir: str | Path) -> list[Path]:
                      f"{ncase} {'elastic-substrate ' if 'rigid' in configs else ''}cases on the (E, H) grid: "
                      "(predicted - reference)/reference, "
                      "symmetric-log scale", fontsize=10)
-        fig.tight_layout()
+        fig.set_layout_engine("tight")  # laid out when drawn, in the render process
         paths += _save(fig, Path(outdir), f"{result.name}_errmap_{ref}")
     return paths
 
@@ -143,5 +143,5 @@ def pairwise_plot(result, outdir: str | Path, quantities: Sequence[str] | None =
         ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))  # off the data
     fig.suptitle(f"{result.name}: cross-checks, each method's difference from the case's reference "
                  "(the spread is the claims' numerical uncertainty)", fontsize=9)
-    fig.tight_layout()
+    fig.set_layout_engine("tight")  # laid out when drawn, in the render process
     return _save(fig, Path(outdir), f"{result.name}_pairwise")
