@@ -164,6 +164,8 @@ class StudyResult:
     crosscheck: list[dict] = field(default_factory=list)
     uncertainty: dict[str, dict[str, float]] = field(default_factory=dict)
     skipped: dict[str, str] = field(default_factory=dict)
+    #: local processes the study's own solves in ``analyse`` may use (the run's ``workers``)
+    workers: int = 1
 
     def rows_of(self, method: str) -> list[dict]:
         return [r for r in self.rows if r["method"] == method]

@@ -33,6 +33,7 @@ from __future__ import annotations
 import math
 import time
 import warnings
+from typing import Any
 
 import numpy as np
 
@@ -116,14 +117,20 @@ def analyse(result: C.StudyResult) -> None:
 
     W_ys, a_ys = substrate_reference()
     settings = fem_settings(result.resolution)
+    refined = refined_fem_settings(result.resolution)
     rows, t0 = [], time.perf_counter()
     by_id = {sc.id: sc for sc in cases(result.resolution)}
-    for sc in by_id.values():
+    # every onset search is independent: the map and the homogeneous case's refined re-solve run
+    # side by side on the run's worker processes
+    hom_id = next((i for i in by_id if by_id[i].params["H"] == 0), None)
+    # (the refined re-solve, the longest, first)
+    jobs = ([(by_id[hom_id], refined)] if hom_id else []) + [(sc, settings) for sc in by_id.values()]
+    solved = solve_onsets(jobs, result.workers)
+    fine = {hom_id: solved.pop(0)} if hom_id else {}
+    for sc, o in zip(by_id.values(), solved, strict=True):
         p = sc.params
-        try:
-            o = _onset(sc, settings)
-        except Exception as exc:  # reported, not fatal: one case must not sink the map
-            result.failures.append({"case": sc.id, **p, "method": "fem-onset", "error": repr(exc)})
+        if isinstance(o, Exception):  # reported, not fatal: one case must not sink the map
+            result.failures.append({"case": sc.id, **p, "method": "fem-onset", "error": repr(o)})
             continue
         rows.append({"case": sc.id, **p, "W_y": o.W_y, "W_bar": o.W_y / W_ys, "p0_over_Y": o.p0_over_Y,
                      "where": o.where, "region": o.region, "r_over_a": o.r / o.a_y, "z_over_a": -o.z / o.a_y,
@@ -135,12 +142,11 @@ def analyse(result: C.StudyResult) -> None:
     result.methods = [*result.methods, "fem-onset"]
     result.computed += len(rows)
     p0_cf, z_cf = hertz_axis_onset(NU)
-    refined = refined_fem_settings(result.resolution)
     result.extra["fem_settings_refined"] = refined
     hom = [r for r in rows if r["case"] == "homogeneous"]
     if hom:
         h = hom[0]
-        u = mesh_uncertainty(by_id[h["case"]], h, refined, ("p0_over_Y", "z_over_a"))
+        u = mesh_uncertainty(by_id[h["case"]], h, refined, ("p0_over_Y", "z_over_a"), fine.get(h["case"]))
         result.extra["uncertainty"] = {"homogeneous": u}
         n_a = fem_settings(result.resolution)["n_a"]
         exact = {"p0_over_Y": p0_cf, "z_over_a": z_cf}
@@ -175,20 +181,41 @@ def analyse(result: C.StudyResult) -> None:
     result.method_time["fem-onset"] = time.perf_counter() - t0  # the refined re-solves included
 
 
-def mesh_uncertainty(sc: C.StudyCase, row: dict, refined: dict, keys: tuple[str, ...]) -> dict:
-    """Numerical uncertainty of ``row[key]`` from the onset re-solved at ``refined`` FE settings.
+def mesh_uncertainty(sc: C.StudyCase, row: dict, refined: dict, keys: tuple[str, ...],
+                     onset: Any = None) -> dict:
+    """Numerical uncertainty of ``row[key]`` from the onset re-solved at ``refined`` FE settings
+    (``onset``: that re-solve where it was already done).
 
     ``2 |v_n - v_2n|``: the Richardson estimate of the error of ``v_n`` for first-order
     convergence (the location of the maximum von Mises stress, sampled at quadrature points,
     converges at first order; p0 and W_y converge faster, so the estimate is conservative
     there). The refined values are returned under ``"refined"``.
     """
-    o = _onset(sc, refined)
+    o = onset if onset is not None and not isinstance(onset, Exception) else _onset(sc, refined)
     W_ys, _ = substrate_reference()
     fine = {"p0_over_Y": o.p0_over_Y, "z_over_a": -o.z / o.a_y, "W_bar": o.W_y / W_ys, "where": o.where}
     out: dict = {k: 2.0 * abs(fine[k] - row[k]) for k in keys}
     out["refined"] = fine
     return out
+
+
+def solve_onsets(jobs: list[tuple[C.StudyCase, dict]], workers: int) -> list:
+    """The onset of each (case, FE settings) of ``jobs``, in order; a failed search gives its
+    exception. Up to ``workers`` forked processes (all of them finish with the call)."""
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+
+    if workers <= 1 or len(jobs) <= 1 or "fork" not in multiprocessing.get_all_start_methods():
+        return [_onset_or_error(j) for j in jobs]
+    with ProcessPoolExecutor(min(workers, len(jobs)), mp_context=multiprocessing.get_context("fork")) as ex:
+        return list(ex.map(_onset_or_error, jobs))
+
+
+def _onset_or_error(job: tuple[C.StudyCase, dict]):
+    try:
+        return _onset(*job)
+    except Exception as exc:
+        return exc
 
 
 def _onset(sc: C.StudyCase, settings: dict):
