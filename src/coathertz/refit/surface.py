@@ -106,8 +106,10 @@ class Surface:
         if any(len(t) != d or min(t) < 0 for t in self.terms):
             raise CoatHertzError(f"Surface: every term needs {d} non-negative degrees")
 
-    @property
+    @cached_property
     def degrees(self) -> tuple[int, ...]:
+        """The highest degree of each variable over the terms (computed once: every evaluation
+        asks)."""
         return tuple(int(max(t[v] for t in self.terms)) for v in range(len(self.variables)))
 
     def scaled(self, X: np.ndarray) -> np.ndarray:
