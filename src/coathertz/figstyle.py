@@ -9,6 +9,7 @@ The rules these helpers serve are in ``docs/style-figures.md``.
 from __future__ import annotations
 
 import contextlib
+import gc
 import math
 import os
 import signal
@@ -65,6 +66,10 @@ class _Saving:
 
 _SAVING: _Saving | None = None
 
+#: Render processes allowed beyond ``jobs`` before :func:`save` waits for one: the caller goes on
+#: with its next study or figure while the operating system shares the CPUs between them.
+QUEUED_RENDERS = 2
+
 
 def _cpus() -> int:
     try:
@@ -76,10 +81,10 @@ def _cpus() -> int:
 @contextlib.contextmanager
 def saving(formats: Sequence[str] = DEFAULT_FORMATS, jobs: int | None = None):
     """Within this block :func:`save` writes ``formats`` and renders each figure in a forked
-    process, up to ``jobs`` at once (default: the CPUs this process may use), while the caller goes
-    on drawing the next one. Leaving the block waits for every render; a render that failed raises
-    :class:`~coathertz.errors.CoatHertzError` naming the figure. Where ``os.fork`` does not exist
-    or ``jobs == 1``, figures are rendered in this process."""
+    process, up to ``jobs + QUEUED_RENDERS`` at once (``jobs`` default: the CPUs this process may
+    use), while the caller goes on with its work. Leaving the block waits for every render; a
+    render that failed raises :class:`~coathertz.errors.CoatHertzError` naming the figure.
+    Where ``os.fork`` does not exist or ``jobs == 1``, figures are rendered in this process."""
     global _SAVING
     from coathertz.errors import CoatHertzError
 
@@ -137,7 +142,7 @@ def save(fig, outdir: str | Path, name: str) -> list[Path]:
         _write(fig, paths)
         plt.close(fig)
         return paths
-    while len(state.running) >= state.jobs:
+    while len(state.running) >= state.jobs + QUEUED_RENDERS:
         state.reap(block=True)
     sys.stdout.flush()
     sys.stderr.flush()
@@ -145,6 +150,7 @@ def save(fig, outdir: str | Path, name: str) -> list[Path]:
     if pid == 0:  # the render process: write the files and leave without running any cleanup
         code = 1
         try:
+            gc.disable()  # short-lived: a collection would only copy the parent's pages (fork)
             signal.signal(signal.SIGINT, signal.SIG_DFL)
             _write(fig, paths)
             code = 0
