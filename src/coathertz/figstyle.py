@@ -21,8 +21,8 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["DEFAULT_FORMATS", "colour", "figure", "method_handles", "method_style", "save", "saving",
-           "series"]
+__all__ = ["DEFAULT_FORMATS", "active_formats", "after_renders", "colour", "figure", "method_handles",
+           "method_style", "save", "saving", "series"]
 
 
 #: The formats :func:`save` writes unless a :func:`saving` block says otherwise. PNG is what the
@@ -39,6 +39,7 @@ class _Saving:
     jobs: int
     running: dict[int, str] = field(default_factory=dict)  # pid -> figure name
     failed: list[str] = field(default_factory=list)
+    after: list = field(default_factory=list)  # callables to run once every render succeeded
 
     def reap(self, block: bool) -> None:
         """Collect this block's finished render processes; with ``block``, wait for the oldest.
@@ -108,6 +109,22 @@ def saving(formats: Sequence[str] = DEFAULT_FORMATS, jobs: int | None = None):
     if state.failed:
         raise CoatHertzError(f"could not render figure(s) {', '.join(sorted(state.failed))} "
                              "(the reason is printed above)")
+    for fn in state.after:
+        fn()
+
+
+def after_renders(fn) -> None:
+    """Call ``fn()`` once every figure saved so far is on disk: at the end of the enclosing
+    :func:`saving` block if all its renders succeeded (never otherwise), or now outside one."""
+    if _SAVING is None:
+        fn()
+    else:
+        _SAVING.after.append(fn)
+
+
+def active_formats() -> tuple[str, ...]:
+    """The formats :func:`save` writes here and now (those of the enclosing :func:`saving` block)."""
+    return _SAVING.formats if _SAVING is not None else DEFAULT_FORMATS
 
 
 def _write(fig, paths: Sequence[Path]) -> None:

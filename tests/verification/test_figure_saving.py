@@ -4,6 +4,7 @@ one process, SVG only on request, a failed render named, no render process left 
 from __future__ import annotations
 
 import os
+import time
 
 import pytest
 
@@ -62,3 +63,51 @@ def test_bad_format_is_refused():
     with pytest.raises(CoatHertzError, match="png, svg"):
         with saving(("pdf",)):
             pass
+
+
+class _Result:
+    """The parts of a study result that plot_study reads."""
+
+    def __init__(self, value: float):
+        self.name, self.value, self.extra = "toy", value, {}
+
+    def to_json(self) -> dict:
+        return {"name": self.name, "value": self.value, "wall_time": time.perf_counter()}
+
+
+class _Study:
+    GENERIC_FIGURES = False
+    calls = 0
+
+    @classmethod
+    def plot(cls, result, outdir):
+        cls.calls += 1
+        return save(_draw(f"value {result.value}"), outdir, "toy")
+
+
+def test_unchanged_figures_are_not_redrawn(tmp_path):
+    from coathertz.report import plot_study
+
+    for value, drawn in ((1.0, 1), (1.0, 1), (2.0, 2)):  # same numbers: kept; new numbers: redrawn
+        with saving(jobs=2):
+            paths = plot_study(_Result(value), _Study, tmp_path)
+        assert _Study.calls == drawn and paths[0].stat().st_size > 5000
+    paths[0].unlink()  # a figure gone from disk is drawn again
+    with saving(jobs=2):
+        plot_study(_Result(2.0), _Study, tmp_path)
+    assert _Study.calls == 3 and paths[0].is_file()
+
+
+def test_failed_render_leaves_no_record(tmp_path, capfd):
+    from coathertz.report import FIGURE_KEYS, plot_study
+
+    class Broken(_Study):
+        @classmethod
+        def plot(cls, result, outdir):
+            fig = _draw("x")
+            fig.axes[0].set_title(r"$\frac{1}{$")
+            return save(fig, outdir, "toy")
+
+    with pytest.raises(CoatHertzError), saving(jobs=2):
+        plot_study(_Result(5.0), Broken, tmp_path)
+    assert "toy" not in (tmp_path / FIGURE_KEYS).read_text()

@@ -11,6 +11,7 @@ the registry's (:mod:`coathertz.methods`) and its own modules.
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import inspect
 import json
@@ -71,23 +72,78 @@ def side_by_side(rows: Sequence[dict], methods: Sequence[str], limit: int = 60) 
     return out[:limit]
 
 
+#: Fields of a study result that do not reach its figures (timings and counts of this run).
+_NOT_DRAWN = ("wall_time", "method_time", "computed", "reused", "workers")
+
+#: The file in a figure folder that records which drawing each study's figures are.
+FIGURE_KEYS = ".figure-keys.json"
+
+
+def figure_key(result: Any, module: Any | None, formats: Sequence[str]) -> str:
+    """A hash of everything a study's figures are drawn from: the result (less its timings), the
+    source of the study module and of the plotting code, matplotlib's version and the formats."""
+    import hashlib
+
+    import matplotlib
+
+    from coathertz import figstyle
+    from coathertz.report import figures as report_figures
+
+    data = {k: v for k, v in result.to_json().items() if k not in _NOT_DRAWN}
+    h = hashlib.sha256(json.dumps(json_safe(data), sort_keys=True, default=str).encode())
+    for mod in (module, figstyle, report_figures):
+        if mod is not None:
+            with contextlib.suppress(OSError, TypeError):
+                h.update(inspect.getsource(mod).encode())
+    h.update(f"{matplotlib.__version__} {sorted(formats)}".encode())
+    return h.hexdigest()
+
+
 def plot_study(result: Any, module: Any | None, figdir: str | Path) -> list[Path]:
     """Draw the figures of one study result: the study module's own (``module.plot``) and the
     report's E x H error maps and pairwise plots, unless the module sets ``GENERIC_FIGURES =
     False``. Also stores the cross-check summaries the pages show in ``result.extra``. Inside a
-    :func:`coathertz.figstyle.saving` block the files are rendered in the background."""
+    :func:`coathertz.figstyle.saving` block the files are rendered in the background.
+
+    Figures drawn from the same numbers by the same code (:func:`figure_key`, recorded in
+    ``figdir/.figure-keys.json``) and still on disk are not drawn again."""
+    from coathertz.figstyle import active_formats, after_renders
     from coathertz.methods import method_names
     from coathertz.report.figures import error_heatmaps, pairwise_plot
 
     figdir = Path(figdir)
-    paths: list[Path] = list(module.plot(result, figdir)) if module is not None else []
-    if getattr(module, "GENERIC_FIGURES", True):  # studies re-using another's cases opt out
-        paths += error_heatmaps(result, figdir)
-        paths += pairwise_plot(result, figdir)
+    generic = getattr(module, "GENERIC_FIGURES", True)  # studies re-using another's cases opt out
+    if generic:
         result.extra["pairwise"] = crosscheck_summary(result.crosscheck)
         registered = set(method_names())
         result.extra["side_by_side"] = side_by_side(result.rows,
                                                     [m for m in result.methods if m in registered])
+    key = figure_key(result, module, active_formats())
+    keys_path = figdir / FIGURE_KEYS
+    try:
+        keys = json.loads(keys_path.read_text())
+    except (OSError, ValueError):
+        keys = {}
+    old = keys.get(result.name, {})
+    if old.get("key") == key and old.get("files") and all((figdir / f).is_file() for f in old["files"]):
+        return [figdir / f for f in old["files"]]
+    paths: list[Path] = list(module.plot(result, figdir)) if module is not None else []
+    if generic:
+        paths += error_heatmaps(result, figdir)
+        paths += pairwise_plot(result, figdir)
+
+    def record() -> None:  # only once the files are complete
+        try:
+            now = json.loads(keys_path.read_text())
+        except (OSError, ValueError):
+            now = {}
+        now[result.name] = {"key": key, "files": [p.name for p in paths]}
+        keys_path.write_text(json.dumps(now, indent=1, sort_keys=True))
+
+    keys.pop(result.name, None)  # redrawn: the old record no longer holds until then
+    figdir.mkdir(parents=True, exist_ok=True)
+    keys_path.write_text(json.dumps(keys, indent=1, sort_keys=True))
+    after_renders(record)
     return paths
 
 
