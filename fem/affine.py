@@ -121,7 +121,7 @@ class RectQ2:
         return out.reshape(nq * 9, 18 * 18)
 
     def elasticity(self, lam: np.ndarray, mu: np.ndarray, element_dofs: np.ndarray, N: int) -> sp.csr_matrix:
-        """The matrix of :data:`coathertz.fem.forms.elasticity` (same quadrature, equal to round-off).
+        """The matrix of ``coathertz.fem.forms.elasticity`` (same quadrature, equal to round-off).
 
         With ``w = 2 pi r |h_r h_z| W_q``, ``alpha = lam w``, ``beta = mu w`` and the reference
         functions ``N``, ``N_r``, ``N_z`` at quadrature point ``q``, the blocks of the element

@@ -252,7 +252,7 @@ def _loop(prob: ContactProblem, solver, step, update, active: np.ndarray, maxite
     displacement) may be ``None``, then ``finish(lambda, delta)`` computes it for the answer.
     A fixed point ends the loop. A cycle (a set seen before, not the last one) ends it too: the
     member of the cycle with the smallest violation is returned if that violation is below
-    :data:`CYCLE_TOL`, else :class:`ConvergenceError` is raised.
+    :data:`CYCLE_TOL`, else :class:`~coathertz.errors.ConvergenceError` is raised.
     """
     history: list[int] = []
     seen: dict[bytes, int] = {}

@@ -83,6 +83,7 @@ def axisymmetric_equivalent(case: ContactCase) -> Equivalent | None:
 #: (displacement form, 194k dofs) and 12.3 kB (a mixed u-p region, 83k dofs; COLAMD fills the LU
 #: four times more); rounded up, plus the interpreter and libraries (:data:`BASE_BYTES`).
 BYTES_PER_DOF = {"displacement": 10_000, "mixed": 20_000}
+#: Bytes of an FE solve independent of its size (the interpreter and the libraries).
 BASE_BYTES = 300e6
 
 
@@ -145,7 +146,8 @@ class FEMMethod:
     max_memory_gb
         Memory budget of one solve [GiB] (default: half the physical memory, at most 8). The
         unknowns and memory are estimated from the mesh size before anything is built
-        (:func:`estimate_memory`); a larger estimate raises :class:`CoatHertzError`. Does not
+        (:func:`estimate_memory`); a larger estimate raises :class:`~coathertz.errors.CoatHertzError`. Does
+        not
         change any number, so it is not part of :meth:`settings`.
     """
 

@@ -18,6 +18,7 @@ Radius ``a`` (one estimator for elastic and plastic edges)
     up to ~ 2 % inside the last loaded node, whose nodal force the Q2 edge spreads outwards).
     Uncertainty ``a_err``: half the spread of the roots over the exponents whose residual is at
     most twice the best, and at least a tenth of the node spacing.
+
 No switching: the same estimator is used at every increment; ``p_mean = W / (pi a^2)`` and the
 bracket's ``[W / (pi a_hi^2), W / (pi a_lo^2)]`` are both reported.
 """

@@ -11,7 +11,7 @@ idealisation are assumed: a/R > 0.1 is warned about and recorded.
 Outputs (:class:`PlasticResult`): per increment the load, approach, contact radius, maximum and
 mean pressure, pressure profile, Newton iterations and cutbacks, the largest equivalent plastic
 strain and the plastic-zone extent; at the end the residual depth and surface profile, the
-residual stresses along the axis and both sides of the interface (:func:`post.stress_report`
+residual stresses along the axis and both sides of the interface (:func:`~coathertz.fem.post.stress_report`
 with the law's stresses), the equivalent plastic strain per element; ``to_json()`` for the
 curves and :func:`write_vtu_series` for ParaView.
 """
@@ -225,7 +225,7 @@ def solve_plastic(
         A case the FE model supports (rigid sphere on a (coated) body or two identical bodies);
         materials with ``plasticity`` yield.
     mesh
-        A level of :data:`PLASTIC_MESHES` or a :class:`MeshSpec`.
+        A level of :data:`PLASTIC_MESHES` or a :class:`~coathertz.fem.mesh.MeshSpec`.
     n_steps
         Load increments to ``W`` (and as many for unloading and reloading).
     unload, reload
@@ -239,7 +239,8 @@ def solve_plastic(
     a_ref
         Reference contact radius of the mesh [m]; default: estimated from Hertz and the yield stress.
     newton
-        Tolerances and caps of the increment loop (default :class:`NewtonSettings` with ``rtol``).
+        Tolerances and caps of the increment loop (default
+        :class:`~coathertz.fem.plastic_contact.NewtonSettings` with ``rtol``).
     targets
         Explicit loading targets [N] (increasing, ending at ``case.W``) instead of ``n_steps``
         equal ones, e.g. geometric steps for deep indentation; unloading mirrors them.
@@ -250,7 +251,7 @@ def solve_plastic(
     max_growths
         When the contact reaches :data:`ZONE_FILL_MAX` of its candidate zone the path is solved
         again on a mesh with a larger reference radius (:data:`ZONE_GROWTH`), at most this many
-        times; then (or with ``max_growths = 0``) :class:`CoatHertzError` stops the run. The
+        times; then (or with ``max_growths = 0``) :class:`~coathertz.errors.CoatHertzError` stops the run. The
         reference radii tried are in ``meta["zone_growths"]``.
 
     Raises

@@ -157,7 +157,7 @@ class HollowSphere:
         return float((q * rho**3 * w)[sel].sum() / w[sel].sum())
 
     def front(self) -> float:
-        """Plastic front ``c = (q rho^3 / Y)^(1/3)`` from the elastic shell (:meth:`_q_rho3`); it
+        """Plastic front ``c = (q rho^3 / Y)^(1/3)`` from the elastic shell (``_q_rho3``); it
         must lie between the outermost plastic and the innermost elastic quadrature radii."""
         if not (self.states[0]["ep"] > 0).any():
             return self.a
@@ -173,7 +173,7 @@ class HollowSphere:
 
     def elastic_limit(self) -> float:
         """Pressure at which von Mises reaches Y at the inner surface, from the elastic solution
-        (``q(a) = <q rho^3> / a^3``, :meth:`_q_rho3`)."""
+        (``q(a) = <q rho^3> / a^3``, ``_q_rho3``)."""
         self.reset()
         self.pressure_step(1e-6 * self.Y)
         q_a = self._q_rho3(False) / self.a**3

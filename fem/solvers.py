@@ -172,7 +172,7 @@ class AMGSolver:
     rtol
         Relative residual tolerance of CG.
     maxiter
-        CG iteration cap; exceeding it raises :class:`ConvergenceError`.
+        CG iteration cap; exceeding it raises :class:`~coathertz.errors.ConvergenceError`.
     """
 
     rtol: float = 1e-10

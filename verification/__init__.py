@@ -20,7 +20,7 @@ A study is a public module of this package that defines
 Optional: ``QUANTITIES``, ``VARIANTS`` (study-specific method variants: name -> (registered
 method, extra settings)), ``PREDICTED`` (default ``closed-form``), ``GENERIC_FIGURES = False``.
 
-:func:`studies` discovers the modules with :mod:`pkgutil`, so adding a module adds a study.
+:func:`studies` discovers the modules with ``pkgutil``, so adding a module adds a study.
 This package's namespace is the public API the studies, the report and the CLI use.
 """
 

@@ -9,7 +9,7 @@ Paper's claim: eq (12)'s error lies in *[0, 8] % for Ec* > Es** and in *[-2.5, 0
 Ec* < Es**; the curves "arguably" fall on one curve for tau* in [0.8, 1.4], more closely within
 each of the two groups.
 
-Cases: those of :mod:`fig3` (shared through the result store).
+Cases: those of :mod:`~coathertz.verification.fig3` (shared through the result store).
 """
 
 from __future__ import annotations

@@ -15,7 +15,7 @@ Claims checked: the homogeneous limit (first yield at p0 = 1.60 Y, z = 0.48 a, J
 against the unrounded Hertz axis values of :func:`~coathertz.fem.plastic_onset.hertz_axis_onset`)
 within 1 % (p0) and 3 % (depth, coarse mesh); the map itself is reported as an observation.
 Each claim carries a mesh uncertainty: the homogeneous case and the map's worst case are solved
-again with twice the elements across a (:func:`mesh_uncertainty`).
+again with twice the elements across a (``mesh_uncertainty``).
 
 Location classes: ``coating`` (inside the coating, including its surface), ``interface`` (on
 the interface, either side, within 5 % of h), ``substrate``.

@@ -266,8 +266,13 @@ class AlphaRule:
         return np.where(E < 1, a13, a3)
 
 
+#: Eq (19) with the parts missing from the copy filled by the representative rule
+#: (docs/paper-notes.md): the default.
 PAPER_RULE = AlphaRule("paper")
+#: Eq (19) with the parts missing from the copy (alpha_a, alpha_delta for E > 1) taken from the
+#: a and delta rows of eq (21).
 EQ21_RULE = AlphaRule("eq21-fill", missing="eq21")
+#: Eq (21) for every quantity (Section 5: elliptical contacts).
 ELLIPTICAL_RULE = AlphaRule("eq21-elliptical", elliptical=True)
 
 

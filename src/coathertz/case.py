@@ -148,7 +148,8 @@ class ContactCase:
     def interface_for(self, setting: str = "bonded") -> str:
         """The coating/substrate interface a method models for this case.
 
-        ``frictionless`` when a coated body's coating says so (:attr:`Coating.interface`) or the
+        ``frictionless`` when a coated body's coating says so
+        (:attr:`~coathertz.materials.Coating.interface`) or the
         method's own ``setting`` asks for it (a study's variant solving bonded cases as
         frictionless); else ``bonded``. A frictionless coating in the case is therefore never
         solved as a bonded one, whatever the method's default.

@@ -192,7 +192,7 @@ def _layers(spec: Any, where: str) -> tuple[Layer, ...]:
 
 
 def case_from_dict(data: dict) -> ContactCase:
-    """Build a :class:`ContactCase` from a parsed TOML document."""
+    """Build a :class:`~coathertz.case.ContactCase` from a parsed TOML document."""
     unknown = set(data) - _TOP_KEYS
     if unknown:
         raise CoatHertzError(f"case file: unknown keys {sorted(unknown)}; allowed {sorted(_TOP_KEYS)}")

@@ -1,7 +1,8 @@
 """Exceptions and warnings shared by every part of coathertz.
 
-Every error a user can cause is a :class:`CoatHertzError` (the CLI prints its message and
-exits with status 2); :class:`ConvergenceError` and :class:`StoreError` are the other two
+Every error a user can cause is a :class:`~coathertz.errors.CoatHertzError` (the CLI prints its message and
+exits with status 2); :class:`~coathertz.errors.ConvergenceError` and :class:`~coathertz.errors.StoreError`
+are the other two
 kinds the CLI reports without a traceback.
 """
 
@@ -33,7 +34,7 @@ class ModelValidityWarning(UserWarning):
 
 
 def check_positive(name: str, value: float, *, allow_inf: bool = False) -> None:
-    """Raise :class:`CoatHertzError` unless ``0 < value`` (finite unless ``allow_inf``).
+    """Raise :class:`~coathertz.errors.CoatHertzError` unless ``0 < value`` (finite unless ``allow_inf``).
 
     ``name`` may carry words before the symbol ("radius R"); the range uses the symbol.
     """

@@ -167,7 +167,8 @@ def _body_compliance(body: Body, q: str, alpha: float, H: float) -> tuple[float,
 
 
 def refuse_frictionless(case: ContactCase, interface: str = "bonded") -> None:
-    """Raise :class:`CoatHertzError` when ``case`` (or the ``interface`` asked for) has a coating
+    """Raise :class:`~coathertz.errors.CoatHertzError` when ``case`` (or the ``interface`` asked for) has a
+    coating
     resting on its substrate without friction: eq (13) and every alpha curve, the paper's and
     the refitted ones, are for a bonded layer, and the bonded answer differs from the exact
     frictionless one by several per cent (E = 0.2, H = 0.3: delta -6.8 %, a -4.6 %, p0 +11.1 %)."""
@@ -198,10 +199,10 @@ def predict(
         comes from the Appendix A curves through ``rule`` (elastic substrate) or the
         rigid-substrate curves.
     rule
-        Alpha rule for elastic substrates; default eq (19) (:data:`PAPER_RULE`) for circular
-        contacts and eq (21) (:data:`ELLIPTICAL_RULE`) for elliptical ones.
+        Alpha rule for elastic substrates; default eq (19) (:data:`~coathertz.alpha.PAPER_RULE`) for circular
+        contacts and eq (21) (:data:`~coathertz.alpha.ELLIPTICAL_RULE`) for elliptical ones.
     warn
-        Issue :class:`FittedRangeWarning` outside the fitted ranges.
+        Issue :class:`~coathertz.errors.FittedRangeWarning` outside the fitted ranges.
     """
     refuse_stack(case, "closed form")  # eqs (17)-(19) know one coating
     refuse_frictionless(case)

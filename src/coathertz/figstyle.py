@@ -25,7 +25,8 @@ __all__ = ["DEFAULT_FORMATS", "active_formats", "after_renders", "colour", "figu
            "method_style", "save", "saving", "series"]
 
 
-#: The formats :func:`save` writes unless a :func:`saving` block says otherwise. PNG is what the
+#: The formats :func:`save` writes unless a :func:`~coathertz.figstyle.saving` block says otherwise. PNG is
+#: what the
 #: report embeds; SVG (vector copies for papers) is opt-in (``coathertz verify --svg``): it costs as
 #: much again as the PNG.
 DEFAULT_FORMATS: tuple[str, ...] = ("png",)
@@ -33,7 +34,7 @@ DEFAULT_FORMATS: tuple[str, ...] = ("png",)
 
 @dataclass
 class _Saving:
-    """State of a :func:`saving` block: the formats and the running render processes."""
+    """State of a :func:`~coathertz.figstyle.saving` block: the formats and the running render processes."""
 
     formats: tuple[str, ...]
     jobs: int
@@ -115,7 +116,8 @@ def saving(formats: Sequence[str] = DEFAULT_FORMATS, jobs: int | None = None):
 
 def after_renders(fn) -> None:
     """Call ``fn()`` once every figure saved so far is on disk: at the end of the enclosing
-    :func:`saving` block if all its renders succeeded (never otherwise), or now outside one."""
+    :func:`~coathertz.figstyle.saving` block if all its renders succeeded (never otherwise), or now outside
+    one."""
     if _SAVING is None:
         fn()
     else:
@@ -123,7 +125,8 @@ def after_renders(fn) -> None:
 
 
 def active_formats() -> tuple[str, ...]:
-    """The formats :func:`save` writes here and now (those of the enclosing :func:`saving` block)."""
+    """The formats :func:`save` writes here and now (those of the enclosing
+    :func:`~coathertz.figstyle.saving` block)."""
     return _SAVING.formats if _SAVING is not None else DEFAULT_FORMATS
 
 
@@ -145,9 +148,11 @@ def _write(fig, paths: Sequence[Path]) -> None:
 
 
 def save(fig, outdir: str | Path, name: str) -> list[Path]:
-    """Save ``fig`` as ``outdir/name.png`` (150 dpi), and ``.svg`` where a :func:`saving` block
+    """Save ``fig`` as ``outdir/name.png`` (150 dpi), and ``.svg`` where a
+    :func:`~coathertz.figstyle.saving` block
     asks for it; close it. Byte-for-byte reproducible: no date in the SVG, fixed SVG ids (a rerun
-    with equal numbers leaves a published report unchanged). Inside a :func:`saving` block with
+    with equal numbers leaves a published report unchanged). Inside a :func:`~coathertz.figstyle.saving`
+    block with
     more than one job the files are complete only when the block ends."""
     import matplotlib.pyplot as plt
 

@@ -43,7 +43,7 @@ def from_jsonable(obj: Any) -> Any:
 
 
 def dumps(obj: Any, **kwargs: Any) -> str:
-    """Strict JSON text of ``obj`` (see :func:`to_jsonable`); ``kwargs`` go to :func:`json.dumps`."""
+    """Strict JSON text of ``obj`` (see :func:`to_jsonable`); ``kwargs`` go to ``json.dumps``."""
     kwargs.setdefault("default", str)
     return json.dumps(to_jsonable(obj), allow_nan=False, **kwargs)
 

@@ -23,6 +23,7 @@ from dataclasses import dataclass, field
 
 from coathertz.errors import CoatHertzError, check_positive
 
+#: The hardening laws a :class:`Plasticity` may name.
 HARDENING_LAWS = ("perfect", "linear", "power", "table")
 
 

@@ -89,7 +89,7 @@ class Method(Protocol):
         ...
 
     def solve(self, case: ContactCase) -> ContactResult:
-        """Solve ``case``; raise :class:`coathertz.ConvergenceError` if it cannot."""
+        """Solve ``case``; raise :class:`~coathertz.errors.ConvergenceError` if it cannot."""
         ...
 
 
@@ -133,7 +133,8 @@ OPTIONAL_HOOKS: tuple[tuple[str, Any], ...] = (
 
 def validate(cls: Any, name: str) -> Any:
     """``cls`` if it meets the method contract (:data:`REQUIRED_MEMBERS`, :data:`OPTIONAL_HOOKS`,
-    ``cost`` in :data:`COSTS`); else :class:`CoatHertzError` naming the method and every member
+    ``cost`` in :data:`COSTS`); else :class:`~coathertz.errors.CoatHertzError` naming the method and every
+    member
     that is missing or malformed."""
     problems = []
     for member, kind in (*REQUIRED_MEMBERS, *OPTIONAL_HOOKS):
@@ -170,7 +171,7 @@ def get_method(name: str, **settings: Any) -> Method:
     """Instantiate the registered method ``name`` with ``settings``.
 
     A setting the method does not take, or a value its constructor refuses, raises
-    :class:`CoatHertzError` naming the method and the setting.
+    :class:`~coathertz.errors.CoatHertzError` naming the method and the setting.
     """
     cls = method_class(name)
     try:
@@ -192,7 +193,8 @@ def get_method(name: str, **settings: Any) -> Method:
 
 
 def require_case(case: Any, method: str) -> ContactCase:
-    """``case`` if it is a :class:`ContactCase`; else :class:`CoatHertzError` naming the argument
+    """``case`` if it is a :class:`~coathertz.case.ContactCase`; else
+    :class:`~coathertz.errors.CoatHertzError` naming the argument
     (a method's ``solve`` calls this first)."""
     if not isinstance(case, ContactCase):
         raise CoatHertzError(f"{method}.solve(case): case must be a coathertz ContactCase (e.g. from "

@@ -41,7 +41,7 @@ class ClosedFormMethod:
     interface
         ``bonded`` (the only interface the closed form models) or ``frictionless``: a coated case
         with a frictionless interface (here or in the case's coating) is refused with a
-        :class:`CoatHertzError` naming the methods that model it, never answered as bonded;
+        :class:`~coathertz.errors.CoatHertzError` naming the methods that model it, never answered as bonded;
         :meth:`supports` is False for it, so studies leave it to the other methods.
     """
 

@@ -138,7 +138,7 @@ class Progress:
     progress bar assumes every case costs the same; with FE cases 1000 times the cost of
     closed-form ones it is off by the mix.
 
-    On a terminal the line is redrawn in place (``\r``) and erased at the end; otherwise (a log
+    On a terminal the line is redrawn in place (a carriage return) and erased at the end; otherwise (a log
     file) one line is written every :data:`PROGRESS_INTERVAL` seconds.
     """
 

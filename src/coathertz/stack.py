@@ -22,7 +22,7 @@ at the bottom and the layer acts as a half-space, as it should). At the surface
 ``sigma_zz = -P``, ``sigma_xz = 0`` give ``u_z``. All of it is batched over ``k``.
 
 This is the *definition* of the kernel, shared like the case model (hashed with it in
-:data:`coathertz.methods.SHARED_SOURCES`); :mod:`coathertz.axisym` and the FFT each use and test
+:data:`~coathertz.methods.SHARED_SOURCES`); :mod:`coathertz.axisym` and the FFT each use and test
 it on their own.
 """
 

@@ -135,7 +135,7 @@ def code_version(method: str | None = None) -> str:
     """``<package version>+<hash of the numerical sources>``: the version key of stored numbers.
 
     With ``method`` (a registered name, or a study's variant such as ``fft-frictionless``), the
-    hash covers the shared case model and validity rule (:data:`coathertz.methods.SHARED_SOURCES`)
+    hash covers the shared case model and validity rule (:data:`~coathertz.methods.SHARED_SOURCES`)
     and that method's own ``source_packages``: editing one method's source invalidates its
     stored results only, not the other methods'. Without, it covers every registered method
     (the provenance of a whole report). A change to the report, the CLI, the studies, this store
@@ -320,7 +320,7 @@ class ResultStore:
             yield self._row(r)
 
     def _query(self, sql: str, args: Iterable[Any] = ()) -> list[tuple]:
-        """Rows of a read query; a damaged file raises :class:`StoreError` naming it."""
+        """Rows of a read query; a damaged file raises :class:`~coathertz.errors.StoreError` naming it."""
         try:
             return self._db.execute(sql, tuple(args)).fetchall()
         except sqlite3.Error as exc:
@@ -504,7 +504,7 @@ def open_run_store(path: str | Path, *, recover: bool = False, version: str | No
         Store file.
     recover
         If the file is damaged, move it aside (:func:`move_aside`, the file is kept) and start a
-        new store; otherwise a damaged file raises :class:`StoreError`.
+        new store; otherwise a damaged file raises :class:`~coathertz.errors.StoreError`.
     note
         Callable receiving a one-line message when a damaged store was moved aside.
     """

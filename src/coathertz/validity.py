@@ -44,7 +44,7 @@ def problems(case: ContactCase, result: ContactResult) -> list[str]:
 
 
 def check(case: ContactCase, result: ContactResult, *, warn: bool = True) -> ContactResult:
-    """``result``, with ``meta["validity"]`` set and a :class:`ModelValidityWarning` issued
+    """``result``, with ``meta["validity"]`` set and a :class:`~coathertz.errors.ModelValidityWarning` issued
     (unless ``warn`` is false) when it lies outside the model's assumptions."""
     msgs = problems(case, result)
     if not msgs:

@@ -103,7 +103,7 @@ def layer_factor_bonded(coating: Material, substrate: Material) -> LayerFactor:
 
 
 def layer_factor_frictionless(coating: Material, substrate: Material) -> LayerFactor:
-    """``F(t)`` of a coating resting on ``substrate`` without friction (rigid allowed).
+    r"""``F(t)`` of a coating resting on ``substrate`` without friction (rigid allowed).
 
     Derivation (plane strain along ``k``, ``k = 1``, Papkovich--Neuber potentials
     ``phi = (A e^{-z} + C e^{z}) cos x``, ``psi = (B e^{-z} + D e^{z}) cos x`` in the layer): with
@@ -191,7 +191,7 @@ class _StackTable:
 def stack_factor(body: Body, table: bool = True) -> tuple[LayerFactor, float]:
     """``F`` of a body with a layer stack (:mod:`coathertz.stack`) as a function of
     ``t = k h_min`` and ``h_min``, the thinnest layer [m] (it sets the decay of ``M``);
-    ``table``: through :class:`_StackTable` (checked against direct evaluation)."""
+    ``table``: through ``_StackTable`` (checked against direct evaluation)."""
     from coathertz.stack import StackLayer, stack_layer_factor
 
     layers = [StackLayer(L.material, L.h, L.interface) for L in body.layers]

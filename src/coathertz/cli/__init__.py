@@ -1,7 +1,7 @@
 """``coathertz`` command line: one module per subcommand in this package.
 
 Each subcommand module defines ``NAME``, ``HELP``, ``add_arguments(parser)`` and
-``run(args) -> int``; :func:`main` discovers them with :mod:`pkgutil`, so adding a
+``run(args) -> int``; :func:`main` discovers them with ``pkgutil``, so adding a
 module adds a subcommand. Modules import their heavy dependencies inside ``run``.
 """
 

@@ -4,10 +4,11 @@ Public API
 ----------
 :class:`~coathertz.fft.method.FFTMethod`
     ``FFTMethod(n=128, ...).solve(case) -> ContactResult``; ``.solve_many(cases)`` for sweeps.
-:mod:`~coathertz.fft.frf`, :mod:`~coathertz.fft.influence`, :mod:`~coathertz.fft.grid`,
-:mod:`~coathertz.fft.solver`, :mod:`~coathertz.fft.estimators`
-    The building blocks (FRF of eq 13 and the transfer matrix, cell coefficients, grids,
-    Polonsky-Keer CG, contact-size estimators).
+The building blocks
+    :mod:`~coathertz.fft.frf` (FRF of eq 13 and the transfer matrix),
+    :mod:`~coathertz.fft.influence` (cell coefficients), :mod:`~coathertz.fft.grid` (grids),
+    :mod:`~coathertz.fft.solver` (Polonsky-Keer CG), :mod:`~coathertz.fft.estimators`
+    (contact-size estimators).
 
 Submodules are imported lazily by the method registry; importing this package is cheap.
 """

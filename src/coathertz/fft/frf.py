@@ -236,7 +236,7 @@ def taylor_coefficients(fun, n: int = 3, radius: float = 0.2, m: int = 64,
     vanish at 0: delta off by 0.15 %). So ``m/2`` coefficients are computed and their series
     is checked against ``fun`` on the circle of radius ``r/4`` (truncation ``4^(-m/2)``; a
     pole inside misses there by its own part); the radius is halved from ``radius`` until it
-    matches to ``rtol`` of ``max |fun|`` on the circle. Raises :class:`CoatHertzError` if no
+    matches to ``rtol`` of ``max |fun|`` on the circle. Raises :class:`~coathertz.errors.CoatHertzError` if no
     radius down to ``min_radius`` passes.
     """
     th = 2.0 * np.pi * np.arange(m) / m

@@ -15,7 +15,7 @@ of the gap outside the contact (:func:`~coathertz.fft.estimators.gap_fit_axes`);
 solving the case again with finer cells on the same domain (``layer_cells``,
 ``meta["layer_refinement"]``).
 
-For sweeps use :meth:`FFTMethod.solve_many` (or :func:`solve_many`): cases sharing a grid (in the
+For sweeps use :meth:`FFTMethod.solve_many` (or ``solve_many``): cases sharing a grid (in the
 fig-3 study every ``H`` of one modulus ratio does: the grid depends only on ``a0s`` and ``a0c``)
 are solved as one batch with stacked arrays, and the coefficient transforms are cached per
 ``(body, grid, interface)``.
@@ -87,6 +87,7 @@ LAYER_CELLS_MIN = 1.0
 #: 423-428 bytes per cell at n = 256, 374-377 at 512, 360-361 at 1024; 5.5 GB at n = 4096
 #: (328 per cell) was reported. The estimate takes the largest with a margin.
 MEMORY_PER_CELL = 450
+#: Bytes of a solve independent of the grid (the interpreter, numpy, scipy).
 MEMORY_BASE = 100 * 2**20
 #: A coating more than ``STIFF_CONTRAST`` times stiffer than its substrate (Ec*/Es*; outside
 #: the paper's range) needs ``STIFF_FACTOR`` times as many cells. Measured at n = 128, bonded

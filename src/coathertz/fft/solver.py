@@ -280,7 +280,7 @@ def polonsky_keer(
     tol
         Stop when ``sum |p - p_old| dA / W < tol`` (P&K's error measure).
     max_iter
-        Iteration cap; not converging within it raises :class:`ConvergenceError`.
+        Iteration cap; not converging within it raises :class:`~coathertz.errors.ConvergenceError`.
     p_init
         Initial pressure (any non-negative field; rescaled to the load), default uniform.
     precondition

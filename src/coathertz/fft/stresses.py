@@ -81,7 +81,8 @@ from coathertz.fft.grid import Grid
 from coathertz.materials import Body
 from coathertz.results import ContactResult
 
-COMPONENTS = ("xx", "yy", "zz", "yz", "xz", "xy")  # Voigt order of the last-but-two axis
+#: The stress components in the order of a field's component axis (Voigt order).
+COMPONENTS = ("xx", "yy", "zz", "yz", "xz", "xy")
 T_MIN = 1e-6  # smallest w h solved (the 6 x 6 system degenerates at t = 0; w = 0 only)
 
 

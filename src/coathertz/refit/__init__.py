@@ -2,11 +2,11 @@
 
 Public API
 ----------
-:func:`load` / :class:`RefitRule`
+:func:`~coathertz.refit.rule.load` / :class:`~coathertz.refit.rule.RefitRule`
     The packaged rule (``coathertz/data/alpha_refit.json``): ``rule.alpha(q, E, H, nu_c, nu_s)``,
     ``rule.alpha_rigid(q, H, nu_c)``, ``rule.model(config).bar(q, ...)`` (vectorised bars),
     ``rule.bound(config, ...)`` (validated error bound of the inputs).
-:func:`predict`
+:func:`~coathertz.refit.rule.predict`
     ``predict(case) -> (ExtendedPrediction, Bound)``: eqs (1)/(5), (17), (18) with the refit.
 :mod:`~coathertz.refit.sweep`, :mod:`~coathertz.refit.build`
     Training/validation sweeps through the result store, and the fit that writes the data file

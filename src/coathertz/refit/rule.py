@@ -283,7 +283,7 @@ def predict(case, rule: RefitRule | None = None, *, warn: bool = True):
     """Extended-Hertz prediction of ``case`` with the refitted rule.
 
     Returns ``(ExtendedPrediction, Bound | None)``; the bound is None for an uncoated case.
-    Warns (:class:`FittedRangeWarning`) outside the validated range, for elastic indenters
+    Warns (:class:`~coathertz.errors.FittedRangeWarning`) outside the validated range, for elastic indenters
     or two coated bodies (the fits are for a rigid indenter on one coated body), and for
     coated ellipses on a rigid substrate (no elliptical rigid-substrate fit).
     """

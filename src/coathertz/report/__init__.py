@@ -25,7 +25,7 @@ from coathertz.report.baseline import Drift, baseline_dict, compare, write_basel
 from coathertz.report.document import html_page, markdown
 from coathertz.verification import crosscheck_summary, group_by_case
 
-__all__ = ["Drift", "ReportFiles", "compare", "plot_study", "write_report"]
+__all__ = ["FIGURE_KEYS", "Drift", "ReportFiles", "compare", "figure_key", "plot_study", "write_report"]
 
 
 @dataclass
