@@ -11,9 +11,10 @@ displacement with right-hand side ``f_ext - F_int(u) + K_t u``. The iteration st
 linearisation residual ``|F_int(u_new) - F_int(u) - K_t (u_new - u)|`` is below ``rtol`` times
 ``|F_int(u_new)|``; history variables are committed at the end of the increment. For linear
 laws ``K_t`` is the constant stiffness (assembled once, fast path of
-:meth:`coathertz.fem.model.FEModel.stiffness`) and one iteration converges; the generic
-quadrature-point path (:func:`internal_force`, :func:`tangent`) is what a J2 law would use and
-is checked against the fast path in the tests. The elastic-plastic model with the B-bar strain,
+:meth:`coathertz.fem.model.FEModel.stiffness`) and the first iteration converges, so
+:func:`solve_incremental`, which serves the elastic model, solves each increment once. The
+generic quadrature-point path (:func:`internal_force`, :func:`tangent`) is what a non-linear law
+would use; the tests check it against the fast path. The elastic-plastic model with the B-bar strain,
 cutbacks and unloading is :mod:`coathertz.fem.plastic_contact` (this loop stays the elastic
 model's, displacement form only).
 """
@@ -26,7 +27,6 @@ import numpy as np
 import scipy.sparse as sp
 from skfem import Basis, asm
 
-from coathertz.errors import ConvergenceError
 from coathertz.fem import forms
 from coathertz.fem.contact import ContactProblem, ContactSolution
 from coathertz.fem.model import INTORDER, FEModel
@@ -81,56 +81,34 @@ def solve_incremental(
     E_star: float,
     s0: float,
     n_steps: int = 1,
-    rtol: float = 1e-8,
-    max_newton: int = 20,
     active0: np.ndarray | None = None,
 ) -> LoadPath:
-    """Apply ``W`` in ``n_steps`` increments (see module docstring)."""
-    linear = all(reg.law.is_linear for reg in model.regions)
-    if not linear and any(reg.mixed for reg in model.regions):
-        raise NotImplementedError("nonlinear laws are implemented for the displacement form only")
-    K_lin = model.stiffness() if linear else None
-    n = K_lin.shape[0] if linear else model.n_u
+    """Apply ``W`` in ``n_steps`` increments to a model of linear laws (see module docstring).
+
+    The stiffness is assembled once; each increment is one contact solve (for a linear law the
+    Newton loop of the module docstring converges in its first iteration, so it is not run).
+    """
+    if not all(reg.law.is_linear for reg in model.regions):
+        raise NotImplementedError("solve_incremental is the elastic model's loop (linear laws); "
+                                  "plasticity is coathertz.fem.plastic_contact")
+    K = model.stiffness()
     cand = model.candidates
     r = model.r_dof[cand]
     g0 = g0_fun(r)
     weights = model.weights_all[cand]
-    x = np.zeros(n)
-    grid = model.dof_grid() if linear else None  # condensed contact solve (one factorisation)
-    nq = model.nq
-    states = [reg.law.initial_state((len(reg.elements), nq)) for reg in model.regions]
+    grid = model.dof_grid()  # condensed contact solve (one factorisation)
+    rhs = np.zeros(K.shape[0])
     active = (r <= r[1]) if active0 is None else active0
-    newton_total = contact_total = 0
+    contact_total = 0
     deltas = []
     sol = None
     for k in range(1, n_steps + 1):
         Wk = W * k / n_steps
         fixed, vals = model.dirichlet(Wk)
-        for _ in range(max_newton):
-            if linear:
-                Kt = K_lin
-                F = Kt @ x
-            else:
-                F, _ = internal_force(model, x, states)
-                Kt = tangent(model, x, states)
-            rhs = -F + Kt @ x
-            prob = ContactProblem(
-                Kt, rhs, fixed, vals, cand, r, weights, g0, Wk, E_star, s0, model.near_null_space, grid
-            )
-            sol = contact.solve(prob, solver, active)
-            contact_total += sol.iterations
-            newton_total += 1
-            x_new, active = sol.u, sol.active
-            F_new = Kt @ x_new if linear else internal_force(model, x_new, states)[0]
-            res = np.linalg.norm((F_new - F - Kt @ (x_new - x))[: model.n_u])
-            x = x_new
-            if res <= rtol * max(np.linalg.norm(F_new[: model.n_u]), 1e-300):
-                break
-        else:
-            raise ConvergenceError(
-                f"Newton loop did not converge in max_newton={max_newton} iterations (step {k})"
-            )
-        if not linear:
-            _, states = internal_force(model, x, states)
+        prob = ContactProblem(K, rhs, fixed, vals, cand, r, weights, g0, Wk, E_star, s0,
+                              model.near_null_space, grid)
+        sol = contact.solve(prob, solver, active)
+        contact_total += sol.iterations
+        active = sol.active
         deltas.append(sol.delta)
-    return LoadPath(sol, x, n_steps, newton_total, contact_total, deltas, states)
+    return LoadPath(sol, sol.u, n_steps, n_steps, contact_total, deltas)

@@ -13,7 +13,7 @@ For each case at the default mesh it reports the wall time of ``FEMMethod.solve`
 output and prints the time ratios. With ``--legacy`` every case is also solved, in the same
 process, by
 
-* ``_before``: the path before issue 13 item 4 on the mesh before issue 9 (refactorising
+* ``_before``: the path before the condensed contact solve, on the mesh before the edge band (refactorising
   active set, skfem's generic assembly, no edge band, L = 40): the numbers of
   ``bench_fem_before.json`` (measured on the unmodified code);
 * ``_newpath``: the condensed solve (one factorisation) on that same old mesh: the same numbers
@@ -75,7 +75,7 @@ def _method(variant: str):
 
     m = FEMMethod()
     if variant in ("before", "newpath"):
-        m.spec = replace(m.spec, edge_refine=1.0, L=40.0)  # the mesh before issue 9
+        m.spec = replace(m.spec, edge_refine=1.0, L=40.0)  # the mesh before the edge band
     if variant == "before":
         m._reuse_factorisation = False  # refactorising active set, generic assembly
     return m

@@ -6,8 +6,8 @@ right before each solve, on a machine that may be shared):
 1. for n = 128, 256, 512 and three cases (homogeneous; E = 3, H = 0.3; E = 1/3, H = 1): the
    time of one forward + inverse real FFT of the padded grid (2n x 2n, ``scipy.fft.rfft2`` and
    ``irfft2``, the solver's thread count) and of one solve with cached coefficients, timed in
-   alternating rounds; the median of the per-round ratios ("FFT-pair equivalents", issue 13
-   goal <= 40 at 128 and <= 60 at 512); the CG iterations and the transform pairs the solver
+   alternating rounds; the median of the per-round ratios ("FFT-pair equivalents";
+   target <= 40 at 128 and <= 60 at 512); the CG iterations and the transform pairs the solver
    counted (coarse-grid pairs of the nested start count a quarter);
 2. the time of the fig-3 sweep: 25 modulus ratios x 101 H in [0.01, 3] at 128 x 128, solved
    with ``FFTMethod.solve_many`` (one grid per modulus ratio, warm start along H);
