@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import gc
 import signal
 import sys
 import time
@@ -133,6 +134,10 @@ def run(args: argparse.Namespace) -> int:
     opts = {"workers": args.workers, "scheduler": args.scheduler,
             "progress": not args.no_progress, "retry_errors": args.retry_errors}
     old = signal.signal(signal.SIGTERM, _sigterm)
+    # the objects that exist now (modules, methods, the store) live as long as the run: kept out
+    # of the garbage collector's scans, in this process and in the worker and render processes
+    # forked from it (a scan writes to every object it visits, so each child would copy them)
+    gc.freeze()
     t0 = time.perf_counter()
     results = []
     figures: dict[str, list[Path]] = {}
