@@ -178,27 +178,7 @@ def plot(result: C.StudyResult, outdir) -> list:
     paths: list = []
     el = [r for r in recs if r["config"] == "elastic" and math.isclose(r["nu_c"], 0.3)]
     if el:
-        fig, axes = C.figure(3, 2, width=4.0, height=3.3)
-        lim = 2.0
-        for i, rule_name in enumerate(("paper", "refit")):
-            for j, q in enumerate(QUANTITIES):
-                ax = axes[i, j]
-                rs = [r for r in el if r["quantity"] == q]
-                x = np.array([r["H"] for r in rs])
-                y = np.array([r["E"] for r in rs])
-                z = np.array([r[rule_name] for r in rs])
-                sc = ax.scatter(x, y, c=np.clip(z, -lim, lim), cmap="RdBu_r", vmin=-lim, vmax=lim, s=28,
-                                marker="s")
-                ax.set_xscale("log")
-                ax.set_yscale("log")
-                ax.axvspan(0.01, 3, color="k", alpha=0.04)
-                ax.set_title(f"{rule_name}: {q}, max |err| {np.max(np.abs(z)):.2f} %", fontsize=9)
-                ax.set_xlabel("H = h/a0s")
-                ax.set_ylabel("E = Ec*/Es*")
-        fig.colorbar(sc, ax=axes, shrink=0.8, label="error [%] (clipped at ±2 %)")
-        fig.suptitle("Elastic substrate, nu = 0.3: paper's rule (top) vs refit (bottom); "
-                     "shaded: the paper's H range", fontsize=10)
-        paths += C.save(fig, outdir, "refit_elastic")
+        paths += _elastic_error_maps(el, outdir)
     other = [r for r in recs if r["config"] in ("rigid", "ellipse")]
     if other:
         fig, axes = C.figure(2, 1, width=5.0, height=3.6)
@@ -219,3 +199,64 @@ def plot(result: C.StudyResult, outdir) -> list:
         fig.set_layout_engine("tight")  # laid out when drawn, in the render process
         paths += C.save(fig, outdir, "refit_rigid_ellipse")
     return paths
+
+
+#: How the refit figure names each rule (rows of ``refit_elastic``).
+RULE_TITLES = {"paper": "paper's rule (eqs 17-19, Appendix A)", "refit": "refitted rule (--alpha-rule refit)"}
+QUANTITY_LABELS = {"a": "a", "p": "$p_0$", "delta": r"$\delta$"}
+
+
+def _elastic_error_maps(el: list[dict], outdir) -> list:
+    """``refit_elastic``: the error of each rule over the (H, E) cells of the elastic, nu = 0.3
+    cases, one row per rule with its own symmetric-log colour scale (the paper's errors reach
+    tens of percent, the refit's hundredths), each cell's value written in it, cells without a
+    case hatched, the paper's fitted H range marked."""
+    from matplotlib.colors import SymLogNorm
+    from matplotlib.patches import Patch
+
+    Hs = sorted({r["H"] for r in el})
+    Es = sorted({r["E"] for r in el})
+    refs = sorted({r["reference"] for r in el})
+    fig, axes = C.figure(len(QUANTITIES), 2, width=4.3, height=3.2)
+    missing = False
+    for i, rule_name in enumerate(("paper", "refit")):
+        vmax = max(abs(r[rule_name]) for r in el) or 1.0
+        norm = SymLogNorm(linthresh=min(0.01, vmax), vmin=-vmax, vmax=vmax, base=10)
+        for j, q in enumerate(QUANTITIES):
+            ax = axes[i, j]
+            Z = np.full((len(Es), len(Hs)), np.nan)
+            for r in el:
+                if r["quantity"] == q:
+                    Z[Es.index(r["E"]), Hs.index(r["H"])] = r[rule_name]
+            missing |= bool(np.isnan(Z).any())
+            ax.patch.set_facecolor("0.85")  # missing cells: hatched grey (white is 0 %)
+            ax.patch.set_hatch("///")
+            ax.patch.set_edgecolor("0.6")
+            im = ax.pcolormesh(np.arange(len(Hs) + 1), np.arange(len(Es) + 1), Z, cmap="RdBu_r", norm=norm)
+            for (e, h), v in np.ndenumerate(Z):
+                if np.isfinite(v):
+                    dark = abs(norm(v) - 0.5) > 0.3
+                    ax.text(h + 0.5, e + 0.5, f"{v:.2g}", ha="center", va="center", fontsize=6,
+                            color="white" if dark else "black")
+            for k in range(1, len(Hs)):  # the ends of the paper's fitted H range [0.01, 3]
+                if (Hs[k - 1] < 0.01 <= Hs[k]) or (Hs[k - 1] <= 3 < Hs[k]):
+                    ax.axvline(k, color="k", lw=1.2, ls="--")
+            ax.set_xticks(np.arange(len(Hs)) + 0.5, [f"{H:.2g}" for H in Hs], fontsize=7)
+            ax.set_yticks(np.arange(len(Es)) + 0.5, [f"{E:g}" for E in Es], fontsize=7)
+            ax.set_xlabel("H = h/a0s (dashed: end of the paper's range 0.01-3)", fontsize=7.5)
+            if j == 0:
+                ax.set_ylabel(f"{RULE_TITLES[rule_name].split(' (')[0]}\nE = Ec*/Es*", fontsize=8)
+            finite = Z[np.isfinite(Z)]
+            worst = float(np.max(np.abs(finite))) if finite.size else math.nan
+            ax.set_title(f"{QUANTITY_LABELS[q]}: max |err| {worst:.3g} %", fontsize=8.5)
+        cb = fig.colorbar(im, ax=list(axes[i]), fraction=0.025, pad=0.01)
+        cb.set_label(f"error [%], {rule_name} (symmetric log)", fontsize=7.5)
+        cb.ax.tick_params(labelsize=7)
+    if missing:
+        fig.legend(handles=[Patch(facecolor="0.85", edgecolor="0.6", hatch="///", label="no case")],
+                   loc="lower left", fontsize=7, frameon=False)
+    n_cases = len({r["case"] for r in el})
+    fig.suptitle(f"Refit study, elastic substrate, nu_c = nu_s = 0.3 ({n_cases} held-out cases): error of "
+                 f"the paper's and the refitted alpha rule against {', '.join(refs).upper()}", fontsize=9)
+    fig.set_layout_engine("constrained")  # the colour bars beside their rows; laid out when drawn
+    return C.save(fig, outdir, "refit_elastic")
