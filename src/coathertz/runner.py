@@ -422,10 +422,58 @@ def worker_init(parent: int) -> None:
     threading.Thread(target=_watch_parent, args=(parent,), daemon=True, name="parent-watchdog").start()
 
 
+#: The pool of :func:`worker_pool` while one is open: (executor, its number of workers).
+_POOL: tuple[ProcessPoolExecutor, int] | None = None
+
+
+def _new_pool(workers: int) -> ProcessPoolExecutor:
+    return ProcessPoolExecutor(max_workers=workers, mp_context=_mp_context(),
+                               initializer=worker_init, initargs=(os.getpid(),))
+
+
+def _kill_pool(ex: ProcessPoolExecutor) -> None:
+    """Terminate the workers of ``ex`` at once (an interrupted run does not wait for the cases in
+    flight: an FE case can take minutes) and shut it down."""
+    for p in list((getattr(ex, "_processes", None) or {}).values()):
+        p.terminate()
+    ex.shutdown(wait=False, cancel_futures=True)
+
+
+class worker_pool:  # a context manager, named like the function it reads as
+    """One pool of ``workers`` local processes for every :func:`run_tasks` call in the block
+    (``with worker_pool(2): ...`` around the studies of a run): the workers are started once,
+    not per call, and keep what they cached (quadrature tables, FFT plans) from one call to the
+    next. Calls asking for a different number of workers get their own pool. Leaving the block
+    by an exception terminates the workers; leaving it normally waits for them to exit.
+    """
+
+    def __init__(self, workers: int):
+        self.workers = max(1, min(int(workers), os.cpu_count() or 1))
+        self._outer: tuple[ProcessPoolExecutor, int] | None = None
+        self._ex: ProcessPoolExecutor | None = None
+
+    def __enter__(self) -> worker_pool:
+        global _POOL
+        self._outer, self._ex = _POOL, _new_pool(self.workers)
+        _POOL = (self._ex, self.workers)
+        return self
+
+    def __exit__(self, kind, exc, tb) -> None:
+        global _POOL
+        _POOL = self._outer
+        if self._ex is None:  # pragma: no cover - __enter__ failed
+            return
+        if kind is None:
+            self._ex.shutdown(wait=True)
+        else:
+            _kill_pool(self._ex)
+
+
 def _run_processes(chunks: list, workers: int, record: Callable) -> None:
     workers = max(1, min(workers, len(chunks), os.cpu_count() or 1))
-    ex = ProcessPoolExecutor(max_workers=workers, mp_context=_mp_context(),
-                             initializer=worker_init, initargs=(os.getpid(),))
+    # the pool of an open worker_pool block, unless a worker of it died (a broken pool)
+    shared = _POOL is not None and _POOL[1] >= workers and not getattr(_POOL[0], "_broken", False)
+    ex = _POOL[0] if shared else _new_pool(workers)  # type: ignore[index]
     futures: dict[Future, tuple[Method, list, float]] = {}
     it = iter(chunks)
     clean = False
@@ -453,9 +501,9 @@ def _run_processes(chunks: list, workers: int, record: Callable) -> None:
         for f in futures:
             f.cancel()
         if not clean:  # interrupted: do not wait for chunks in flight (an FE case can take minutes)
-            for p in list(getattr(ex, "_processes", {}).values()):
-                p.terminate()
-        ex.shutdown(wait=clean, cancel_futures=True)
+            _kill_pool(ex)
+        elif not shared:
+            ex.shutdown(wait=True)
 
 
 def _run_dask(chunks: list, scheduler: Any, record: Callable) -> None:

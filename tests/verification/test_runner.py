@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 from fake_method import FakeMethod, cases
 
-from coathertz.runner import RunInterrupted, Task, run_tasks
+from coathertz.runner import RunInterrupted, Task, run_tasks, worker_pool
 from coathertz.store import ResultStore, case_key
 
 HERE = Path(__file__).resolve().parent
@@ -61,6 +61,30 @@ def test_process_pool_matches_serial(tmp_path):
         assert os.getpid() not in pids  # solved in worker processes
         for k in ser.results:
             assert par.results[k].result["delta"] == ser.results[k].result["delta"]
+
+
+def test_worker_pool_serves_every_call_in_its_block(tmp_path):
+    """Within ``worker_pool`` the calls share one pool (the same worker processes); the block
+    leaves no worker behind; an interrupted call inside it still resumes without loss."""
+    m = FakeMethod(delay=0.01)
+    with ResultStore(tmp_path / "s.sqlite", version="t") as st, worker_pool(2) as pool:
+        first = run_tasks([Task(c, m) for c in cases(6)], st, workers=2, progress=False)
+        later = run_tasks([Task(c, m) for c in cases(12)[6:]], st, workers=2, progress=False)
+        pids = [{o.results[k].result["meta"]["pid"] for k in o.results} for o in (first, later)]
+        workers = set(pool._ex._processes)
+        assert pids[0] and pids[1] and pids[0] | pids[1] <= workers  # the same pool's workers
+        assert os.getpid() not in workers
+    for pid in workers:  # the block's end waited for its workers to exit
+        with pytest.raises(ProcessLookupError):
+            os.kill(pid, 0)
+    with ResultStore(tmp_path / "t.sqlite", version="t") as st:
+        tasks = [Task(c, FakeMethod(delay=0.02)) for c in cases(12)]
+        with pytest.raises(RunInterrupted), worker_pool(2):
+            run_tasks(tasks, st, workers=2, progress=False, stop_after=5)
+        assert st.count() == 5
+        with worker_pool(2):
+            out = run_tasks(tasks, st, workers=2, progress=False)
+        assert (out.reused, out.computed) == (5, 7) and st.count() == 12
 
 
 def test_exception_injected_midway_loses_and_repeats_nothing(tmp_path):

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import gc
 import signal
 import sys
@@ -95,6 +96,7 @@ def run(args: argparse.Namespace) -> int:
     from coathertz.report.baseline import load_baseline
     from coathertz.report.document import verdict_counts
     from coathertz.report.provenance import collect
+    from coathertz.runner import worker_pool
     from coathertz.store import open_run_store
     from coathertz.verification import build_methods, get_study, run_study, studies
 
@@ -145,7 +147,9 @@ def run(args: argparse.Namespace) -> int:
     try:
         # each study's figures are drawn as soon as it is done and rendered in the background
         # while the next study runs (the block ends when every render has finished)
-        with saving(("png", "svg") if args.svg else ("png",), 1 if args.scheduler else args.workers):
+        # one pool of worker processes for all the studies (started once, caches kept)
+        pool = worker_pool(args.workers) if args.scheduler is None else contextlib.nullcontext()
+        with pool, saving(("png", "svg") if args.svg else ("png",), 1 if args.scheduler else args.workers):
             for mod in mods:
                 r = run_study(mod, args.resolution, methods, store, opts)
                 results.append(r)
