@@ -21,23 +21,41 @@ def _draw(label: str):
     return fig
 
 
-def _no_children_left() -> bool:
-    """No child process of this one, running or finished-but-not-collected."""
-    try:
-        os.waitpid(-1, os.WNOHANG)  # returns when a child exists (running or a zombie)
-    except ChildProcessError:
-        return True
-    return False
+@pytest.fixture
+def forks(monkeypatch):
+    """The pids of the render processes forked during a test."""
+    pids: list[int] = []
+    real_fork = os.fork
+
+    def fork():
+        pid = real_fork()
+        if pid:
+            pids.append(pid)
+        return pid
+
+    monkeypatch.setattr(os, "fork", fork)
+    return pids
 
 
-def test_forked_renders_equal_serial_ones(tmp_path):
+def _all_collected(pids: list[int]) -> bool:
+    """Every one of ``pids`` has exited and been waited for (none running, none a zombie)."""
+    for pid in pids:
+        try:
+            os.waitpid(pid, os.WNOHANG)
+        except ChildProcessError:
+            continue
+        return False
+    return True
+
+
+def test_forked_renders_equal_serial_ones(tmp_path, forks):
     serial = save(_draw("serial"), tmp_path / "one", "f")
     with saving(jobs=2):
         forked = [save(_draw("serial"), tmp_path / "two", f"f{i}")[0] for i in range(3)]
     assert [p.suffix for p in serial] == [".png"]
     for p in forked:
         assert p.read_bytes() == serial[0].read_bytes(), p
-    assert _no_children_left()
+    assert len(forks) == 3 and _all_collected(forks)
 
 
 def test_svg_only_on_request(tmp_path):
@@ -48,7 +66,7 @@ def test_svg_only_on_request(tmp_path):
     assert paths[1].read_text().lstrip().startswith("<?xml")
 
 
-def test_failed_render_is_named(tmp_path, capfd):
+def test_failed_render_is_named(tmp_path, capfd, forks):
     fig = _draw("ok")
     fig.axes[0].set_title(r"$\frac{1}{$")  # mathtext that fails only when drawn
     with pytest.raises(CoatHertzError, match=r"could not render figure.*broken"):
@@ -56,7 +74,7 @@ def test_failed_render_is_named(tmp_path, capfd):
             save(fig, tmp_path, "broken")
             save(_draw("fine"), tmp_path, "fine")
     assert (tmp_path / "fine.png").stat().st_size > 5000
-    assert _no_children_left()
+    assert len(forks) == 2 and _all_collected(forks)
 
 
 def test_bad_format_is_refused():
