@@ -76,7 +76,15 @@ def _all_modules() -> list[str]:
         p = importlib.import_module(pkg)
         names.append(pkg)
         names += [m.name for m in pkgutil.walk_packages(p.__path__, pkg + ".")]
-    return sorted({n for n in names if not n.startswith("coathertz.cli")})
+    return sorted({n for n in names if not n.startswith("coathertz.cli") and not _alias(n)})
+
+
+def _alias(name: str) -> bool:
+    """A deprecated module kept under an old name that only forwards to its new home."""
+    import importlib.util
+
+    spec = importlib.util.find_spec(name)
+    return bool(spec and spec.origin and "DEPRECATED ALIAS" in Path(spec.origin).read_text())
 
 
 def _documented(app) -> set[str]:

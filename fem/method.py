@@ -31,6 +31,7 @@ import numpy as np
 
 from coathertz import validity
 from coathertz.case import ContactCase, refuse_stack
+from coathertz.closedform.hertz import hertz_circular
 from coathertz.errors import CoatHertzError, ConvergenceError
 from coathertz.fem.contact import ActiveSet, Penalty, TwoBody
 from coathertz.fem.farfield import BoussinesqFarField, FixedFarField
@@ -40,7 +41,6 @@ from coathertz.fem.mesh import MESH_LEVELS, MeshSize, build_companion, build_mes
 from coathertz.fem.model import FEModel, Region
 from coathertz.fem.post import AXIS_TOL, contact_radius, peak_pressure, stress_report, surface_pressure
 from coathertz.fem.solvers import AMGSolver, DirectSolver
-from coathertz.hertz import hertz_circular
 from coathertz.materials import Body, Material
 from coathertz.methods import require_case
 from coathertz.results import ContactResult

@@ -29,6 +29,7 @@ import numpy as np
 
 from coathertz import errors
 from coathertz.case import ContactCase
+from coathertz.closedform.hertz import hertz_circular
 from coathertz.errors import CoatHertzError
 from coathertz.fem.farfield import BoussinesqFarField
 from coathertz.fem.j2 import J2Plastic, equivalent_stress
@@ -40,7 +41,6 @@ from coathertz.fem.plastic_assembly import BBarAssembler
 from coathertz.fem.plastic_contact import IncrementalContact, NewtonSettings, PathState, geometry_of
 from coathertz.fem.plastic_edge import edge_radius
 from coathertz.fem.post import stress_report, surface_pressure
-from coathertz.hertz import hertz_circular
 from coathertz.materials import Material
 from coathertz.validity import A_OVER_R_MAX
 

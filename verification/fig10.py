@@ -25,9 +25,9 @@ from __future__ import annotations
 import numpy as np
 
 from coathertz import verification as C
-from coathertz.alpha import CURVES, ELLIPTICAL_RULE, Alphas
 from coathertz.case import ContactCase
-from coathertz.extended import predict
+from coathertz.closedform.alpha import CURVES, ELLIPTICAL_RULE, Alphas
+from coathertz.closedform.extended import predict
 from coathertz.materials import RIGID, Body, Coating, Material
 
 NAME = "fig10"

@@ -27,8 +27,8 @@ import math
 import numpy as np
 
 from coathertz import verification as C
-from coathertz.alpha import EQ21_RULE
-from coathertz.extended import predict_bar
+from coathertz.closedform.alpha import EQ21_RULE
+from coathertz.closedform.extended import predict_bar
 
 NAME = "fig3"
 TITLE = "Figure 3: a, p, delta against H, elastic substrate"

@@ -2,7 +2,7 @@ r"""Figure 4 (Section 3): the parameter alpha inverted from each numerical fig-3
 
 For every numerical result (FFT, FE) of the fig-3 cases and each quantity q in {a, p, delta},
 solve for the alpha with which eqs (1), (17), (18) reproduce the numerical bar
-(:func:`coathertz.extended.invert_alpha`). Where no alpha in [1e-3, 1e3] reproduces it (the
+(:func:`coathertz.closedform.extended.invert_alpha`). Where no alpha in [1e-3, 1e3] reproduces it (the
 numerical value lies outside the range eq (17) can represent, typically where the bar is
 within discretisation error of 1 at thin coatings), the study reports the case instead.
 
@@ -30,8 +30,8 @@ import math
 import numpy as np
 
 from coathertz import verification as C
-from coathertz.alpha import PAPER_RULE
-from coathertz.extended import invert_alpha
+from coathertz.closedform.alpha import PAPER_RULE
+from coathertz.closedform.extended import invert_alpha
 
 from . import fig3
 

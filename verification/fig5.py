@@ -20,7 +20,7 @@ import math
 import numpy as np
 
 from coathertz import verification as C
-from coathertz.alpha import CURVES, breakpoint_jumps
+from coathertz.closedform.alpha import CURVES, breakpoint_jumps
 
 from . import fig3, fig4
 

@@ -19,7 +19,7 @@ import math
 import numpy as np
 
 from coathertz import verification as C
-from coathertz.literature import stevanovic_elastic, stevanovic_star
+from coathertz.closedform.literature import stevanovic_elastic, stevanovic_star
 
 from . import fig3
 

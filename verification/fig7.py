@@ -28,7 +28,7 @@ import math
 import numpy as np
 
 from coathertz import verification as C
-from coathertz.literature import matthewson_a_bar, stevanovic_rigid, vorovich_ustinov
+from coathertz.closedform.literature import matthewson_a_bar, stevanovic_rigid, vorovich_ustinov
 
 NAME = "fig7"
 TITLE = "Figure 7: rigid substrate, a/a0c against tau = h/a for nu_c = 0.3, 0.4, 0.5; eqs (8b), (10), (11)"

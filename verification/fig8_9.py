@@ -20,8 +20,8 @@ import math
 import numpy as np
 
 from coathertz import verification as C
-from coathertz.alpha import CURVES, alpha_rigid
-from coathertz.extended import predict_bar
+from coathertz.closedform.alpha import CURVES, alpha_rigid
+from coathertz.closedform.extended import predict_bar
 
 from . import fig4
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from coathertz.case import ContactCase
-from coathertz.hertz import hertz_circular
+from coathertz.closedform.hertz import hertz_circular
 from coathertz.materials import RIGID, Body, Coating, Material
 
 __all__ = ["E_SUBSTRATE", "NU", "R_SPHERE", "W_LOAD", "elastic_case", "fig3_ratios", "h_grid", "nearest",

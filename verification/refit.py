@@ -1,6 +1,6 @@
 r"""The refitted extended-Hertz rule against the exact method, next to the paper's rule.
 
-Configurations (rigid indenter, :mod:`coathertz.refit.sweep` cases):
+Configurations (rigid indenter, :mod:`coathertz.fitalpha.sweep` cases):
 
 * elastic substrate: E = Ec*/Es* and H = h/a0s over the paper's range (E in [1/4, 4],
   H in [0.01, 3]) and the extended one (E in [1/10, 10], H in [0.001, 10]); nu_c = nu_s = 0.3
@@ -25,9 +25,9 @@ import warnings
 import numpy as np
 
 from coathertz import verification as C
-from coathertz.refit import load
-from coathertz.refit import predict as refit_predict
-from coathertz.refit.sweep import Point, make_case
+from coathertz.closedform.refit import load
+from coathertz.closedform.refit import predict as refit_predict
+from coathertz.fitalpha.sweep import Point, make_case
 
 NAME = "refit"
 TITLE = "Refitted alpha vs the paper's rule, against the exact method"

@@ -23,10 +23,10 @@ readings of alpha vs Appendix A; which of the two predicts the numerical results
 from __future__ import annotations
 
 from coathertz import verification as C
-from coathertz.alpha import Alphas
 from coathertz.case import ContactCase
 from coathertz.casefile import load_example
-from coathertz.extended import predict
+from coathertz.closedform.alpha import Alphas
+from coathertz.closedform.extended import predict
 
 NAME = "section6"
 TITLE = "Section 6: B4C on steel; Keer et al.'s coated balls (cases A and B)"

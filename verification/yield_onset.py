@@ -39,7 +39,7 @@ import numpy as np
 
 from coathertz import verification as C
 from coathertz.case import ContactCase
-from coathertz.hertz import hertz_circular
+from coathertz.closedform.hertz import hertz_circular
 from coathertz.materials import Material
 
 NAME = "yield_onset"

@@ -3,7 +3,7 @@
 Four independent methods check the "extended Hertz" theory of the paper *An extension of
 the Hertz theory for three-dimensional coated bodies* and each other:
 
-* the closed form (:mod:`coathertz.hertz`, :mod:`coathertz.extended`, :mod:`coathertz.refit`),
+* the closed form (:mod:`coathertz.closedform`: Hertz, the extended theory, the refitted rule),
 * the DC-FFT contact solver (:mod:`coathertz.fft`),
 * the axisymmetric finite-element model with J2 plasticity (:mod:`coathertz.fem`),
 * the exact axisymmetric integral-equation method (:mod:`coathertz.axisym`), the arbiter of

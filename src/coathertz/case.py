@@ -16,13 +16,13 @@ from dataclasses import dataclass
 from functools import cached_property
 from typing import Any
 
-from coathertz.errors import CoatHertzError, check_positive
-from coathertz.hertz import (
+from coathertz.closedform.hertz import (
     HertzElliptical,
     combined_modulus,
     hertz_elliptical,
     relative_radii,
 )
+from coathertz.errors import CoatHertzError, check_positive
 from coathertz.materials import INTERFACES, Body, Coating, Material
 
 

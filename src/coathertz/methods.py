@@ -58,7 +58,7 @@ COSTS = ("cheap", "moderate", "expensive")
 #: Study resolutions.
 RESOLUTIONS = ("tiny", "quick", "full")
 #: Modules every method's numbers depend on (the shared case model): always hashed.
-SHARED_SOURCES = ("coathertz.case", "coathertz.materials", "coathertz.stack", "coathertz.hertz",
+SHARED_SOURCES = ("coathertz.case", "coathertz.materials", "coathertz.stack", "coathertz.closedform.hertz",
                   "coathertz.results", "coathertz.validity", "coathertz.units")
 
 

@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 from coathertz.axisym import AxisymMethod
+from coathertz.fitalpha.sweep import Point, make_case
 from coathertz.materials import RIGID
-from coathertz.refit.sweep import Point, make_case
 
 from .conftest import coated
 

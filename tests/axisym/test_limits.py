@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from coathertz.axisym import AxisymMethod
-from coathertz.hertz import hertz_circular
+from coathertz.closedform.hertz import hertz_circular
 from coathertz.materials import RIGID, Material
 
 from .conftest import STEEL, coated, homogeneous
@@ -137,7 +137,7 @@ def test_rigid_base_incompressible_thin_layer_matthewson():
     """nu_c = 0.5 on a rigid base: the solution approaches Matthewson's eq (10) (whose leading
     term is the bonded incompressible thin layer, W = pi G a^6 / (32 R h^3), delta = a^2/(4R));
     the differences fall at first order in tau = h/a (the kernel stays finite at nu_c = 0.5)."""
-    from coathertz.literature import matthewson_load
+    from coathertz.closedform.literature import matthewson_load
 
     errs, d_errs, taus = [], [], []
     for H in (0.05, 0.02, 0.01):

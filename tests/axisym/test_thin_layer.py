@@ -13,7 +13,7 @@ import pytest
 from coathertz.axisym import AxisymMethod
 from coathertz.axisym import solver as S
 from coathertz.axisym.kernel import pair_compliance
-from coathertz.hertz import hertz_circular
+from coathertz.closedform.hertz import hertz_circular
 
 from .conftest import coated
 

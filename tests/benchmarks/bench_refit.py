@@ -2,7 +2,7 @@
 
 Reports the vectorised evaluation rate of the refit rule (goal: >= 1e6 cases/s, a case being
 all three of a, delta, p0) for random inputs over the validated ranges, next to the paper's
-rule (eq 19 + Appendix A through :func:`coathertz.extended.predict_bar`) on the same inputs,
+rule (eq 19 + Appendix A through :func:`coathertz.closedform.extended.predict_bar`) on the same inputs,
 for the elastic substrate, the rigid substrate and the elliptical correction. Timings are the
 best of ``--repeat`` runs; on a shared machine quote the ratios. ``RefitRule.bars`` and
 ``ellipse_bars`` evaluate large inputs in one block per core (threads, single-threaded BLAS), so
@@ -21,9 +21,9 @@ import warnings
 
 import numpy as np
 
-from coathertz.alpha import PAPER_RULE
-from coathertz.extended import predict_bar
-from coathertz.refit import load
+from coathertz.closedform.alpha import PAPER_RULE
+from coathertz.closedform.extended import predict_bar
+from coathertz.closedform.refit import load
 
 
 def best(f, repeat: int) -> float:

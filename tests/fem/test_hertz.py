@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from coathertz.hertz import hertz_axis_stresses
+from coathertz.closedform.hertz import hertz_axis_stresses
 
 
 def test_default_mesh_reproduces_hertz(fx):

@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from coathertz.case import ContactCase
+from coathertz.closedform.hertz import hertz_circular
 from coathertz.errors import CoatHertzError
 from coathertz.fem.mesh import MESH_LEVELS, MeshSpec, build_mesh, check_spacing
-from coathertz.hertz import hertz_circular
 from coathertz.materials import RIGID, Body, Coating, Material
 
 A_REF = 3.0411009977867e-05  # a0c of the crash case below

@@ -287,7 +287,7 @@ def test_stiff_thin_coating_is_refined_as_far_as_memory_allows():
     (the fixed cap of 4n left it at +0.665 % with a note quoting 0.59 %), a within 0.1 % of the
     exact method (measured +0.004 %)."""
     from coathertz.axisym import AxisymMethod
-    from coathertz.refit.sweep import Point, make_case
+    from coathertz.fitalpha.sweep import Point, make_case
 
     case = make_case(Point("elastic", 10.0, 0.005))
     exact = AxisymMethod().solve(case)
@@ -302,7 +302,7 @@ def test_unrefined_note_quotes_a_bound_that_holds(E, H, bound):
     """Left unrefined (``layer_cells=None``), the note's bound holds: measured 0.666 / 0.159 /
     0.100 % here against the bounds 1.0 / 0.3 / 0.3 % (1.5 x the largest of 70 measured cases)."""
     from coathertz.axisym import AxisymMethod
-    from coathertz.refit.sweep import Point, make_case
+    from coathertz.fitalpha.sweep import Point, make_case
 
     case = make_case(Point("elastic", E, H))
     exact = AxisymMethod().solve(case)

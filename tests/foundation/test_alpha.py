@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from coathertz.alpha import (
+from coathertz.closedform.alpha import (
     CURVES,
     EQ21_RULE,
     PAPER_RULE,

@@ -8,9 +8,16 @@ import numpy as np
 import pytest
 
 from coathertz import RIGID, Body, Coating, ContactCase, Material
-from coathertz.alpha import Alphas
+from coathertz.closedform.alpha import Alphas
+from coathertz.closedform.extended import (
+    E1_over_Ec,
+    E1_star,
+    constants_from_ratio,
+    invert_alpha,
+    predict,
+    predict_bar,
+)
 from coathertz.errors import FittedRangeWarning
-from coathertz.extended import E1_over_Ec, E1_star, constants_from_ratio, invert_alpha, predict, predict_bar
 from coathertz.materials import coating_constants
 
 

@@ -8,8 +8,7 @@ import numpy as np
 import pytest
 from scipy.special import ellipe, ellipk
 
-from coathertz.errors import CoatHertzError
-from coathertz.hertz import (
+from coathertz.closedform.hertz import (
     elliptic_factors,
     hertz_axis_stresses,
     hertz_circular,
@@ -18,6 +17,7 @@ from coathertz.hertz import (
     relative_radii,
     solve_zeta,
 )
+from coathertz.errors import CoatHertzError
 
 
 def test_circular_identities():

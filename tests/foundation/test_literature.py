@@ -6,9 +6,8 @@ import numpy as np
 import pytest
 from scipy import special
 
-from coathertz.errors import FittedRangeWarning
-from coathertz.hertz import hertz_circular
-from coathertz.literature import (
+from coathertz.closedform.hertz import hertz_circular
+from coathertz.closedform.literature import (
     keer,
     matthewson_a_bar,
     matthewson_c,
@@ -17,6 +16,7 @@ from coathertz.literature import (
     stevanovic_rigid,
     vorovich_ustinov,
 )
+from coathertz.errors import FittedRangeWarning
 
 
 def test_vorovich_tends_to_one_and_keer_rigid_indenter():

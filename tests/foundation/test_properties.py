@@ -7,8 +7,8 @@ from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 
 from coathertz import RIGID, Body, Coating, ContactCase, Material
-from coathertz.alpha import BREAKPOINTS, Alphas
-from coathertz.extended import predict
+from coathertz.closedform.alpha import BREAKPOINTS, Alphas
+from coathertz.closedform.extended import predict
 
 moduli = st.floats(5e9, 1e12)
 poisson = st.floats(0.0, 0.49)
@@ -51,7 +51,7 @@ def test_depends_on_moduli_only_through_ratios(Es, nus, E_ratio, nuc, R, W, H, s
     """Scaling every modulus by s_mod and the load by s_load leaves the bars unchanged at fixed H.
 
     Except exactly at a breakpoint of the paper's piecewise Appendix A alpha curves: they jump
-    there (alpha_p(3) at H = 0.75: 1.9348 -> 1.9367, :func:`coathertz.alpha.breakpoint_jumps`),
+    there (alpha_p(3) at H = 0.75: 1.9348 -> 1.9367, :func:`coathertz.closedform.alpha.breakpoint_jumps`),
     and the round-off of H = h/a0s after scaling can land on either side (hypothesis found
     H = 0.75, s_load = 3: p0 bar off by 4.9e-5). Those H are excluded.
     """

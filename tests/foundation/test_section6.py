@@ -14,10 +14,10 @@ from __future__ import annotations
 
 import pytest
 
-from coathertz.alpha import Alphas, eq19_p
 from coathertz.casefile import load_example
-from coathertz.extended import predict
-from coathertz.hertz import hertz_circular
+from coathertz.closedform.alpha import Alphas, eq19_p
+from coathertz.closedform.extended import predict
+from coathertz.closedform.hertz import hertz_circular
 
 UM, GPA, MPA = 1e-6, 1e9, 1e6
 
@@ -74,7 +74,7 @@ def test_section6_closed_form_numbers(row):
 def test_appendix_a_differs_from_figure_reading_in_b4c_example():
     """The B4C example's alpha read from figure 5 at H = 0.98 (3.35, 1.1, 1.55) is far from
     Appendix A at the same H; the cases A and B readings agree with Appendix A within 0.1."""
-    from coathertz.alpha import alpha_a_3, alpha_delta_3, alpha_p_3
+    from coathertz.closedform.alpha import alpha_a_3, alpha_delta_3, alpha_p_3
 
     assert abs(alpha_a_3(0.98) - 3.35) > 0.9
     assert abs(alpha_p_3(0.98) - 1.55) > 0.7

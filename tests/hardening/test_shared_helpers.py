@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from coathertz.casefile import load_example
-from coathertz.extended import constants_from_ratio
+from coathertz.closedform.extended import constants_from_ratio
 from coathertz.jsonsafe import dumps, from_jsonable, loads, to_jsonable
 from coathertz.materials import Material, coating_constants, lam_kappa
 

@@ -9,10 +9,10 @@ import pytest
 
 from coathertz.axisym import AxisymMethod
 from coathertz.case import ContactCase
+from coathertz.closedform.method import ClosedFormMethod
 from coathertz.errors import CoatHertzError
 from coathertz.fem.method import FEMMethod
 from coathertz.materials import RIGID, Body, Coating, Layer, Material
-from coathertz.predictor import ClosedFormMethod
 
 STEEL = Material(200e9, 0.3)
 B4C = Material(380e9, 0.17)
@@ -119,7 +119,7 @@ def test_store_key_tells_stacks_apart():
 
 
 def test_extended_predict_and_fe_model_refuse_stacks():
-    from coathertz.extended import predict
+    from coathertz.closedform.extended import predict
     from coathertz.fem.method import axisymmetric_equivalent
 
     c = case(Body(STEEL, layers=(Layer(B4C, 1e-6), Layer(STEEL, 1e-6))))

@@ -6,9 +6,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from coathertz.refit import ellipse as EL
-from coathertz.refit import load
-from coathertz.refit import rule as R
+from coathertz.closedform.refit import ellipse as EL
+from coathertz.closedform.refit import load
+from coathertz.closedform.refit import rule as R
 
 
 @pytest.fixture

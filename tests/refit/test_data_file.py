@@ -20,10 +20,10 @@ import pytest
 
 from coathertz.cli import main
 from coathertz.cli.fit_alpha import compare, load_sweep
+from coathertz.closedform.refit import load
+from coathertz.fitalpha.build import build
+from coathertz.fitalpha.sweep import Point, bars_of, make_case, select, table_hash
 from coathertz.methods import get_method
-from coathertz.refit import load
-from coathertz.refit.build import build
-from coathertz.refit.sweep import Point, bars_of, make_case, select, table_hash
 
 HERE = Path(__file__).parent / "data"
 DATA = resources.files("coathertz") / "data"

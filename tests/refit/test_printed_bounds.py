@@ -19,9 +19,9 @@ import pytest
 
 from coathertz.axisym import AxisymMethod
 from coathertz.case import ContactCase
-from coathertz.hertz import hertz_circular
+from coathertz.closedform.hertz import hertz_circular
+from coathertz.closedform.method import ClosedFormMethod
 from coathertz.materials import RIGID, Body, Coating, Material
-from coathertz.predictor import ClosedFormMethod
 
 QUANTITIES = {"a": "a", "delta": "delta", "p": "p0"}
 RANGES = {"E": (0.1, 10.0), "H": (1e-3, 10.0), "nu": (0.0, 0.5)}
@@ -136,8 +136,8 @@ def test_frictionless_interface_is_refused_never_bonded(capsys):
     """The closed form models a bonded coating only; a frictionless one (case file or flag) is
     refused naming the methods that model it, from the CLI and from the Python API."""
     from coathertz.cli import main
+    from coathertz.closedform.extended import predict
     from coathertz.errors import CoatHertzError
-    from coathertz.extended import predict
 
     argv = ["predict", "--W", "1 N", "--R", "10 mm", "--substrate", "200 GPa,0.3",
             "--coating", "40 GPa,0.3,12 um", "--interface", "frictionless"]
@@ -170,7 +170,7 @@ def _check_ellipse(E: float, H: float, rho: float) -> None:
     semi-axes is about 0.13 % there and below 0.1 % with its thin-coating refinement; the fresh
     reference is the FFT at its defaults (measured at five points: at most 0.43 of the bound)."""
     from coathertz.fft.method import FFTMethod
-    from coathertz.refit.sweep import Point, make_case
+    from coathertz.fitalpha.sweep import Point, make_case
 
     case = make_case(Point("ellipse", E, H, 0.3, 0.3, rho))
     with warnings.catch_warnings():

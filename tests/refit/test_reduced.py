@@ -15,9 +15,9 @@ import pytest
 from scipy.optimize import brentq
 
 from coathertz.axisym.method import AxisymMethod
-from coathertz.extended import constants_from_ratio
-from coathertz.refit.reduced import dundurs, poisson_of, s_coordinate
-from coathertz.refit.sweep import Point, bars_of, make_case
+from coathertz.closedform.extended import constants_from_ratio
+from coathertz.closedform.refit.reduced import dundurs, poisson_of, s_coordinate
+from coathertz.fitalpha.sweep import Point, bars_of, make_case
 
 BARS = ("a_bar", "delta_bar", "p_bar")
 

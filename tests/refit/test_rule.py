@@ -11,13 +11,14 @@ import warnings
 import numpy as np
 import pytest
 
-from coathertz.alpha import breakpoint_jumps
 from coathertz.case import ContactCase
+from coathertz.closedform.alpha import breakpoint_jumps
+from coathertz.closedform.method import ClosedFormMethod
+from coathertz.closedform.refit import ellipse as EL
+from coathertz.closedform.refit import load
 from coathertz.errors import FittedRangeWarning
+from coathertz.fitalpha import sweep
 from coathertz.materials import RIGID, Body, Coating, Material
-from coathertz.predictor import ClosedFormMethod
-from coathertz.refit import ellipse as EL
-from coathertz.refit import load, sweep
 
 RULE = load()
 E_GRID = np.geomspace(0.1, 10, 7)
@@ -168,7 +169,7 @@ def test_predictor_uses_the_best_form_and_says_so():
 def test_p0_has_no_jump_across_the_ring_box_faces():
     """p0 of the corrected form is max(axis branch, ring branch) inside the ring box only: on the
     box faces the ring branch must lie below the axis branch, else p0 would jump there."""
-    from coathertz.refit.sweep import RING_BOX
+    from coathertz.fitalpha.sweep import RING_BOX
 
     def f(E, H, nu_c, nu_s):
         return float(np.log(RULE.corrected_bar("p", E, H, nu_c, nu_s))[0])

@@ -10,9 +10,9 @@ import warnings
 import pytest
 
 from coathertz import verification as C
+from coathertz.closedform.refit import predict
+from coathertz.fitalpha.sweep import Point, make_case
 from coathertz.methods import get_method
-from coathertz.refit import predict
-from coathertz.refit.sweep import Point, make_case
 from coathertz.store import ResultStore
 from coathertz.verification import get_study
 

@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from coathertz.closedform.refit.surface import Surface, chebyshev_table, term_set
 from coathertz.errors import CoatHertzError
-from coathertz.refit.surface import Surface, chebyshev_table, term_set
 
 
 def _surface(seed=0):
@@ -48,7 +48,7 @@ def test_round_trip_and_validation():
 def test_shared_evaluation_equals_the_design_matrix():
     """Surfaces of different degrees and term sets in one shared evaluation (the matrix product
     over the union of the terms), across the table and product chunk boundaries."""
-    from coathertz.refit.surface import evaluate_shared
+    from coathertz.closedform.refit.surface import evaluate_shared
 
     ss = [_surface(seed) for seed in range(3)]
     terms = term_set((3, 6, 1, 2), ((1, 3), (2, 0)))

@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 
 from coathertz.case import ContactCase
+from coathertz.closedform.hertz import hertz_circular
 from coathertz.errors import CoatHertzError
 from coathertz.fft.method import FFTMethod
 from coathertz.fft.stresses import contact_stresses, default_depths
-from coathertz.hertz import hertz_circular
 from coathertz.materials import RIGID, Body, Coating, Material
 
 from .huber import huber

@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from coathertz.extended import E1_over_Ec, constants_from_ratio, predict
+from coathertz.closedform.extended import E1_over_Ec, constants_from_ratio, predict
 from coathertz.verification import RESOLUTIONS, VERDICTS, elastic_case, get_study, studies
 
 EXPECTED = {"fig3", "fig4", "fig5", "poisson", "fig6", "fig7", "fig8_9", "fig10", "section6", "refit"}
@@ -127,7 +127,7 @@ def test_section6_printed_numbers(tiny_results):
 
 
 def test_fig7_literature_at_the_numerical_tau(tiny_results):
-    from coathertz.literature import stevanovic_rigid
+    from coathertz.closedform.literature import stevanovic_rigid
 
     for d in tiny_results["fig7"].extra["literature"]:
         assert d["eq11"] == pytest.approx(1 - 1.04 * np.exp(-1.73 * d["tau"] ** 0.734))

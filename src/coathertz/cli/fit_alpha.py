@@ -36,7 +36,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--elastic-grid", default="33,17,17",
                         help="elastic training grid: Chebyshev-Lobatto nodes in log10 H, log10 E and "
                              "Dundurs' "
-                             "s (coathertz.refit.reduced; default 33,17,17)")
+                             "s (coathertz.closedform.refit.reduced; default 33,17,17)")
     parser.add_argument("--rigid-grid", default="65,33",
                         help="rigid-substrate training grid: nodes in log10 H and t(nu_c) (default 65,33)")
     parser.add_argument("--valid-elastic", type=int, default=1500,
@@ -142,8 +142,8 @@ def export_sweep(path: Path, table: dict, provenance: dict) -> None:
 
 
 def solve_sweep(args) -> tuple[dict, dict]:
+    from coathertz.fitalpha import sweep as S
     from coathertz.methods import get_method
-    from coathertz.refit import sweep as S
     from coathertz.store import ResultStore, code_version
 
     settings = json.loads(args.method_settings)
@@ -221,7 +221,7 @@ def compare(new: dict, old: dict) -> float:
     """Largest |difference| of alpha predicted by two data files on a fixed probe grid (relative)."""
     import numpy as np
 
-    from coathertz.refit.rule import RefitRule
+    from coathertz.closedform.refit.rule import RefitRule
 
     a, b = RefitRule(new), RefitRule(old)
     E = np.geomspace(0.1, 10, 9)[:, None, None]
@@ -233,7 +233,7 @@ def compare(new: dict, old: dict) -> float:
             return float("inf")
         for q in new["surfaces"][cfg]:
             if cfg == "ellipse":
-                from coathertz.refit import ellipse as EL
+                from coathertz.closedform.refit import ellipse as EL
 
                 x = EL.log_correction(a.ellipse_surfaces(), q, 2.0, H.ravel(), 3.0)
                 y = EL.log_correction(b.ellipse_surfaces(), q, 2.0, H.ravel(), 3.0)
@@ -254,7 +254,7 @@ def compare(new: dict, old: dict) -> float:
 
 
 def run(args: argparse.Namespace) -> int:
-    from coathertz.refit.build import build
+    from coathertz.fitalpha.build import build
 
     _grid(args.elastic_grid, 3, "--elastic-grid")  # before any solving
     _grid(args.rigid_grid, 2, "--rigid-grid")
@@ -267,15 +267,15 @@ def run(args: argparse.Namespace) -> int:
             export_sweep(args.export_sweep, table, prov)
             print(f"sweep written to {args.export_sweep} ({len(table['H'])} points)")
     prov["command"] = "coathertz fit-alpha " + " ".join(sys.argv[2:]) if sys.argv[1:2] == [NAME] else NAME
-    from coathertz.refit.fit import FitSettings
+    from coathertz.fitalpha.fit import FitSettings
 
     # a sweep may carry its own fit settings (the small test fixture does: fewer terms for fewer rows)
     settings = {k: FitSettings.from_dict(v) for k, v in prov.get("fit_settings", {}).items()}
     data = build(table, provenance=prov, settings=settings)
     if args.spot_check:
+        from coathertz.fitalpha import sweep as S
+        from coathertz.fitalpha.sweep import spot_check
         from coathertz.methods import get_method
-        from coathertz.refit import sweep as S
-        from coathertz.refit.sweep import spot_check
         from coathertz.store import ResultStore
 
         m = get_method(args.spot_method, **json.loads(args.spot_settings))

@@ -28,13 +28,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--alpha-rule", default="paper", choices=_alpha_rules(),
                         help="alpha rule: 'paper' or 'eq21-fill' (how the parts of eq (19) missing from "
                              "the copy are filled, docs/paper-notes.md), or 'refit' (smooth refitted "
-                             "alpha with a validated error bound, coathertz.refit)")
+                             "alpha with a validated error bound, coathertz.closedform.refit)")
     parser.add_argument("--json", action="store_true", help="machine-readable output")
 
 
 def _alpha_rules() -> list[str]:
     """The rules the predictor knows (its registry), so the choices are not kept by hand."""
-    from coathertz import predictor
+    from coathertz.closedform import method as predictor
 
     return sorted(getattr(predictor, "RULE_NAMES", predictor.RULES))
 
@@ -48,9 +48,9 @@ def _mpa(x: float) -> str:
 
 
 def run(args: argparse.Namespace) -> int:
-    from coathertz.alpha import Alphas
+    from coathertz.closedform.alpha import Alphas
+    from coathertz.closedform.method import ClosedFormMethod
     from coathertz.errors import FittedRangeWarning, ModelValidityWarning
-    from coathertz.predictor import ClosedFormMethod
 
     if args.list_examples:
         return list_examples()

@@ -36,6 +36,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from coathertz.case import ContactCase
+from coathertz.closedform.hertz import pressure_elliptical
 from coathertz.errors import CoatHertzError
 from coathertz.fft import estimators
 from coathertz.fft.frf import INTERFACES
@@ -56,7 +57,6 @@ from coathertz.fft.solver import (
     get_backend,
     polonsky_keer,
 )
-from coathertz.hertz import pressure_elliptical
 from coathertz.materials import Body
 from coathertz.methods import require_case
 from coathertz.results import ContactResult

@@ -1,18 +1,13 @@
-"""Extended Hertz, refitted: smooth closed-form alpha fits with validated bounds.
+"""Deprecated: the refitted rule moved to :mod:`coathertz.closedform.refit` and its offline fit
+to :mod:`coathertz.fitalpha`; this package and its modules forward there and are removed in the
+next release."""
 
-Public API
-----------
-:func:`~coathertz.refit.rule.load` / :class:`~coathertz.refit.rule.RefitRule`
-    The packaged rule (``coathertz/data/alpha_refit.json``): ``rule.alpha(q, E, H, nu_c, nu_s)``,
-    ``rule.alpha_rigid(q, H, nu_c)``, ``rule.model(config).bar(q, ...)`` (vectorised bars),
-    ``rule.bound(config, ...)`` (validated error bound of the inputs).
-:func:`~coathertz.refit.rule.predict`
-    ``predict(case) -> (ExtendedPrediction, Bound)``: eqs (1)/(5), (17), (18) with the refit.
-:mod:`~coathertz.refit.sweep`, :mod:`~coathertz.refit.build`
-    Training/validation sweeps through the result store, and the fit that writes the data file
-    (``coathertz fit-alpha``).
-"""
+# DEPRECATED ALIAS: this package only forwards to the new ones (the documentation skips it)
+import warnings
 
-from coathertz.refit.rule import Bound, RefitRule, load, predict
+from coathertz.closedform.refit import Bound, RefitRule, load, predict
+
+warnings.warn("coathertz.refit moved to coathertz.closedform.refit (the rule) and coathertz.fitalpha "
+              "(the fit); the old name is removed in the next release", DeprecationWarning, stacklevel=2)
 
 __all__ = ["Bound", "RefitRule", "load", "predict"]

@@ -18,10 +18,10 @@ from pathlib import Path
 import numpy as np
 
 from coathertz.cli.fit_alpha import export_sweep, load_sweep
-from coathertz.refit.fit import FitSettings
-from coathertz.refit.model import t_nu
-from coathertz.refit.reduced import s_coordinate
-from coathertz.refit.sweep import REDUCED_BOX, RIGID_BOX, lobatto
+from coathertz.closedform.refit.model import t_nu
+from coathertz.closedform.refit.reduced import s_coordinate
+from coathertz.fitalpha.fit import FitSettings
+from coathertz.fitalpha.sweep import REDUCED_BOX, RIGID_BOX, lobatto
 
 SIZES = {("elastic", "valid"): 60, ("rigid", "valid"): 40, ("ellipse", "train"): 80, ("ellipse", "valid"): 20}
 SETTINGS = {
