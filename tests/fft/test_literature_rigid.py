@@ -17,8 +17,8 @@ import warnings
 import numpy as np
 import pytest
 
-from coathertz import literature as lit
 from coathertz.case import ContactCase
+from coathertz.closedform import literature as lit
 from coathertz.errors import FittedRangeWarning
 from coathertz.fft.method import FFTMethod
 from coathertz.materials import RIGID, Material
