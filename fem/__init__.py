@@ -1,4 +1,4 @@
-"""Axisymmetric finite-element model of a (coated) half-space pressed by a rigid sphere.
+"""Axisymmetric finite-element model of (coated) bodies in contact: elastic, and elastic-plastic.
 
 scikit-fem, Q2 quadrilaterals (Taylor-Hood Q2-Q1 for nu >= 0.45), frictionless node-to-rigid
 paraboloid contact under load control (or an elastic indenter meshed as a second half-space);
@@ -14,13 +14,8 @@ last; ``solvers`` direct / condensed LU / nested-dissection LU / AMG-CG; ``loadi
 and Newton loop; ``post`` contact radius, p0, stresses; ``io`` VTU output; ``method``
 :class:`~coathertz.fem.method.FEMMethod` (the ``fem`` entry of the method registry).
 
-Elasticity is one wing; plasticity (rigid sphere on a (coated) body whose materials have a yield
-stress) is the other, in the ``plastic_*`` modules and ``j2``: ``j2`` the J2 radial return with
-its consistent tangent; ``plastic_assembly`` B-bar Q2 assembly of internal force and tangent;
-``plastic_contact`` the incremental contact + plasticity Newton loop (load or approach control,
-adaptive sub-increments); ``plastic_method`` the load path (mesh sized from the path's largest
-load or approach, grown when the contact nears its candidate zone's edge), curves, final fields,
-JSON / CSV / VTU + ``.pvd`` output; ``plastic_edge`` contact-edge bracket and radius;
-``plastic_plot`` load-approach and plastic-zone figures; ``plastic_onset`` elastic onset of
-yield; ``plastic_sphere`` Hill's hollow sphere (a verification problem with a closed form).
+Elasticity is one wing; plasticity (a rigid sphere on a (coated) body whose materials have a
+yield stress) is the other, in the subpackage :mod:`coathertz.fem.plastic` (J2 return mapping,
+B-bar assembly, incremental contact, load path, contact edge, figures, yield onset, Hill's hollow
+sphere).
 """

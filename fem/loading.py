@@ -15,7 +15,7 @@ laws ``K_t`` is the constant stiffness (assembled once, fast path of
 :func:`solve_incremental`, which serves the elastic model, solves each increment once. The
 generic quadrature-point path (:func:`internal_force`, :func:`tangent`) is what a non-linear law
 would use; the tests check it against the fast path. The elastic-plastic model with the B-bar strain,
-cutbacks and unloading is :mod:`coathertz.fem.plastic_contact` (this loop stays the elastic
+cutbacks and unloading is :mod:`coathertz.fem.plastic.contact` (this loop stays the elastic
 model's, displacement form only).
 """
 
@@ -90,7 +90,7 @@ def solve_incremental(
     """
     if not all(reg.law.is_linear for reg in model.regions):
         raise NotImplementedError("solve_incremental is the elastic model's loop (linear laws); "
-                                  "plasticity is coathertz.fem.plastic_contact")
+                                  "plasticity is coathertz.fem.plastic.contact")
     K = model.stiffness()
     cand = model.candidates
     r = model.r_dof[cand]

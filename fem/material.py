@@ -10,7 +10,7 @@ tangent :math:`\\partial\\sigma/\\partial\\varepsilon` (4 x 4 at every point) an
 Arrays carry the quadrature layout ``(..., n_elements, n_points)``. The assembly
 (:mod:`coathertz.fem.forms`) and the incremental loop (:mod:`coathertz.fem.loading`) only use
 this interface. :class:`LinearElastic` is here; the J2 elastic-plastic law (plastic strain and
-equivalent plastic strain as history) is :class:`coathertz.fem.j2.J2Plastic`.
+equivalent plastic strain as history) is :class:`coathertz.fem.plastic.j2.J2Plastic`.
 """
 
 from __future__ import annotations

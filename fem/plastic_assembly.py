@@ -1,112 +1,13 @@
-r"""Quadrature-point assembly for non-linear laws, with the B-bar (Q2 / P1-projected volume) strain.
+"""Deprecated alias of :mod:`coathertz.fem.plastic.assembly` (moved there).
 
-For elastic-plastic flow the plastic strain is isochoric, so with full integration a pure
-displacement element must satisfy (nearly) incompressible kinematics at every quadrature
-point and can lock (Nagtegaal, Parks & Rice 1974). The B-bar method (Hughes 1980, *Int. J.
-Numer. Meth. Eng.* 15:1413; Simo & Hughes 1998, Section 4.4) replaces the volumetric strain by
-its element-wise :math:`L^2` projection onto a smaller space, here the linear polynomials
-:math:`\{1, r, z\}` (weight :math:`2\pi r`):
-
-.. math:: \bar\varepsilon = \varepsilon - \tfrac13 (\operatorname{tr}\varepsilon)\, m
-          + \tfrac13\, \Pi_1(\operatorname{tr}\varepsilon)\, m ,\qquad
-          \operatorname{tr}\varepsilon = \partial_r u_r + u_r/r + \partial_z u_z .
-
-With the Q2 displacement this is the Q2/P1-discontinuous mixed element with the pressure
-condensed out element by element, an inf-sup stable pair; any law of
-:mod:`coathertz.fem.material` (or :mod:`coathertz.fem.j2`) is evaluated with :math:`\bar\varepsilon`
-and the same :math:`\bar B` enters the internal force and the tangent
-(:math:`F = \int \bar B^T \sigma\, 2\pi r`, :math:`K = \int \bar B^T D\, \bar B\, 2\pi r`), so the
-tangent is consistent. ``bbar=False`` gives the plain displacement form (for comparison in the
-locking test, ``tests/plasticity/test_hill_sphere.py``).
-
-Arrays: ``B[4, 18, nel, nq]`` (strain of each local shape function), element dofs
-``[18, nel]`` from scikit-fem's vector Q2 basis; assembly by ``coo -> csr``.
+The old name is removed in the next release.
 """
 
-from __future__ import annotations
+# DEPRECATED ALIAS: this module only forwards to the new one (the documentation skips it)
+import importlib
+import sys
+import warnings
 
-import numpy as np
-import scipy.sparse as sp
-from skfem import Basis
-
-from coathertz.fem import forms
-
-
-class BBarAssembler:
-    """Strain, internal force and tangent at quadrature points of a vector Q2 ``basis``.
-
-    Parameters
-    ----------
-    basis
-        scikit-fem vector basis (the FE model's ``basis``).
-    regions
-        ``(elements, law)`` pairs covering the elements that carry material.
-    bbar
-        Use the projected volumetric strain (default) or the plain displacement form.
-    """
-
-    def __init__(self, basis: Basis, regions: list, bbar: bool = True) -> None:
-        self.basis = basis
-        self.regions = regions
-        self.bbar = bbar
-        self.n = basis.N
-        r = basis.global_coordinates()
-        rq, zq = np.asarray(r[0]), np.asarray(r[1])
-        self.rq, self.zq = rq, zq
-        self.w = np.asarray(basis.dx) * 2.0 * np.pi * rq  # [nel, nq]
-        nloc = basis.Nbfun
-        B = np.empty((4, nloc, *rq.shape))
-        for a in range(nloc):
-            phi = basis.basis[a][0]
-            B[:, a] = np.array(forms.strain(phi, rq))
-        if bbar:
-            bv = B[0] + B[1] + B[2]  # [18, nel, nq]
-            rc = (rq * self.w).sum(-1) / self.w.sum(-1)
-            zc = (zq * self.w).sum(-1) / self.w.sum(-1)
-            hc = np.sqrt(self.w.sum(-1) / (2 * np.pi * rc))  # ~ element size
-            P = np.stack([np.ones_like(rq), (rq - rc[:, None]) / hc[:, None],
-                          (zq - zc[:, None]) / hc[:, None]])
-            M = np.einsum("keq,leq,eq->ekl", P, P, self.w)
-            rhs = np.einsum("keq,aeq,eq->eka", P, bv, self.w)
-            c = np.linalg.solve(M, rhs)  # [nel, 3, 18]
-            bv_bar = np.einsum("keq,eka->aeq", P, c)
-            B[:3] += ((bv_bar - bv) / 3.0)[None]
-        self.B = B
-        self.edofs = np.asarray(basis.element_dofs)  # [18, nel]
-        nl = nloc
-        self._rows = np.broadcast_to(self.edofs[:, None, :], (nl, nl, self.edofs.shape[1])).transpose(2, 0, 1)
-        self._cols = np.broadcast_to(self.edofs[None, :, :], (nl, nl, self.edofs.shape[1])).transpose(2, 0, 1)
-
-    # -- quadrature-point fields ----------------------------------------------------------------
-    def strain(self, u: np.ndarray, elements: np.ndarray) -> np.ndarray:
-        """``eps_bar[4, nel_region, nq]`` of the nodal displacement ``u`` on ``elements``."""
-        ue = u[self.edofs[:, elements]]
-        return np.einsum("iaeq,ae->ieq", self.B[:, :, elements], ue)
-
-    def evaluate(self, u: np.ndarray, states: list, tangent: bool = True):
-        """Stresses, tangents and trial states of every region at displacement ``u``.
-
-        Returns ``(F_int, K or None, sigmas, new_states)``.
-        """
-        F = np.zeros(self.n)
-        Ke_all, sigmas, new_states = [], [], []
-        for (els, law), st in zip(self.regions, states, strict=True):
-            eps = self.strain(u, els)
-            sig, D, st_new = law.stress(eps, st)
-            Bq = self.B[:, :, els]
-            w = self.w[els]
-            fe = np.einsum("iaeq,ieq,eq->ae", Bq, sig, w)
-            np.add.at(F, self.edofs[:, els], fe)
-            if tangent:
-                D = np.broadcast_to(D, (4, 4, *eps.shape[1:]))
-                DB = np.einsum("ijeq,jbeq->ibeq", D, Bq)
-                Ke_all.append((els, np.einsum("iaeq,ibeq,eq->eab", Bq, DB, w, optimize=True)))
-            sigmas.append(sig)
-            new_states.append(st_new)
-        K = None
-        if tangent:
-            rows = np.concatenate([self._rows[els].ravel() for els, _ in Ke_all])
-            cols = np.concatenate([self._cols[els].ravel() for els, _ in Ke_all])
-            vals = np.concatenate([Ke.ravel() for _, Ke in Ke_all])
-            K = sp.csr_matrix((vals, (rows, cols)), shape=(self.n, self.n))
-        return F, K, sigmas, new_states
+warnings.warn("coathertz.fem.plastic_assembly moved to coathertz.fem.plastic.assembly; "
+              "the old name is removed in the next release", DeprecationWarning, stacklevel=2)
+sys.modules[__name__] = importlib.import_module("coathertz.fem.plastic.assembly")

@@ -131,7 +131,7 @@ class StressField:
     """Continuous (per region) Q2 projections of the four stress components; ``at(points)``.
 
     ``sig`` (optional): quadrature-point stresses per region index, e.g. from a non-linear law's
-    committed state (:mod:`coathertz.fem.plastic_method`); default: the linear-elastic stresses
+    committed state (:mod:`coathertz.fem.plastic.method`); default: the linear-elastic stresses
     of ``x`` (:func:`quad_stress`).
     """
 

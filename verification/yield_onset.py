@@ -4,7 +4,7 @@ Not a figure of the paper: an extension. For each coating (modulus ratio
 :math:`E = E_c^*/E_s^*`, thickness :math:`H = h/a_{ys}`, yield-stress ratio :math:`Y_c/Y_s`) the
 elastic FE solution gives the load :math:`W_y` at which the von Mises stress first reaches the
 yield stress of the coating or of the substrate, and where
-(:func:`coathertz.fem.plastic_onset.yield_onset`). Normalisation: :math:`W_{ys}` and
+(:func:`coathertz.fem.plastic.onset.yield_onset`). Normalisation: :math:`W_{ys}` and
 :math:`a_{ys}` are the first-yield load and the Hertz contact radius of the uncoated substrate
 (:math:`p_0 = 1.61\, Y_s` for :math:`\nu = 0.3`, Johnson 1985, Section 6.2), so
 :math:`W_y/W_{ys} < 1` means the coating makes the system yield earlier. Substrate: steel,
@@ -12,7 +12,7 @@ yield stress of the coating or of the substrate, and where
 rigid sphere :math:`R = 10` mm.
 
 Claims checked: the homogeneous limit (first yield at p0 = 1.60 Y, z = 0.48 a, Johnson; judged
-against the unrounded Hertz axis values of :func:`~coathertz.fem.plastic_onset.hertz_axis_onset`)
+against the unrounded Hertz axis values of :func:`~coathertz.fem.plastic.onset.hertz_axis_onset`)
 within 1 % (p0) and 3 % (depth, coarse mesh); the map itself is reported as an observation.
 Each claim carries a mesh uncertainty: the homogeneous case and the map's worst case are solved
 again with twice the elements across a (``mesh_uncertainty``).
@@ -61,7 +61,7 @@ COLOURS = {"coating": "tab:red", "interface": "tab:purple", "substrate": "tab:bl
 
 def substrate_reference() -> tuple[float, float]:
     """``(W_ys, a_ys)``: first-yield load and Hertz radius of the uncoated substrate."""
-    from coathertz.fem.plastic_onset import hertz_axis_onset
+    from coathertz.fem.plastic.onset import hertz_axis_onset
 
     p0y, _ = hertz_axis_onset(NU)
     Es_star = Material(ES, NU).E_star
@@ -113,7 +113,7 @@ def cases(resolution: str) -> list[C.StudyCase]:
 
 
 def analyse(result: C.StudyResult) -> None:
-    from coathertz.fem.plastic_onset import hertz_axis_onset
+    from coathertz.fem.plastic.onset import hertz_axis_onset
 
     W_ys, a_ys = substrate_reference()
     settings = fem_settings(result.resolution)
@@ -220,7 +220,7 @@ def _onset_or_error(job: tuple[C.StudyCase, dict]):
 
 def _onset(sc: C.StudyCase, settings: dict):
     from coathertz.fem.method import FEMMethod
-    from coathertz.fem.plastic_onset import yield_onset
+    from coathertz.fem.plastic.onset import yield_onset
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")

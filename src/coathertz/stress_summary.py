@@ -1,4 +1,5 @@
-"""What designers read from a stress field (issue 18, scope 5): maxima with their locations.
+"""What designers read from a stress field: the maxima, with their locations, of the stresses
+that decide where a coating yields, cracks or delaminates.
 
 Method-independent: works on any field sampled on ``(z, component, y, x)`` in the Voigt order
 ``xx, yy, zz, yz, xz, xy`` [Pa], positions in m. Tension is positive.
@@ -37,7 +38,7 @@ def _entry(values: np.ndarray, mask: np.ndarray, x, y, z, p0: float) -> dict | N
 
 def summarise(body: Body, x, y, z, sigma: np.ndarray, p0: float,
               interface_sigma: np.ndarray | None = None) -> dict:
-    """The maxima of issue 18 (scope 5), each ``{value [Pa], over_p0, at: [x, y, z] m}``.
+    """The designer's maxima, each ``{value [Pa], over_p0, at: [x, y, z] m}``.
 
     ``interface_sigma`` (``(6, ny, nx)``): the coating side of the interface ``z = h``, for
     the interface shear ``sqrt(sigma_xz^2 + sigma_yz^2)`` and normal (tension) stress.

@@ -7,7 +7,7 @@ across the reference contact radius). Goal: <= 60 s on 2 cores. Prints wall and 
 Newton iterations of every increment and the time per factorisation.
 
 ``--approach UM`` runs the README's approach-control path instead (``coathertz fem
-example:yielding_steel --plastic --approach "20 um"``, ``--steps`` increments). Issue 20's goals:
+example:yielding_steel --plastic --approach "20 um"``, ``--steps`` increments). The targets:
 README path (>= 20 increments) <= 3 s, a path to delta/delta_c = 200 <= 30 s, failed-attempt
 solves <= 10 % of all linear solves (printed as ``failed solves``).
 
@@ -23,7 +23,7 @@ import platform
 import time
 
 from coathertz.case import ContactCase
-from coathertz.fem.plastic_method import solve_plastic
+from coathertz.fem.plastic.method import solve_plastic
 from coathertz.materials import Body, Material, Plasticity
 
 Y, R = 1e9, 0.01
@@ -55,7 +55,7 @@ def main(argv=None) -> int:
     print(f"failed solves {failed} of {m['factorisations']} ({100 * failed / m['factorisations']:.0f} %; "
           "goal <= 10 %)")
     print(f"wall {wall:.1f} s, CPU {cpu:.1f} s "
-          "(goal of issue 20: <= 3 s for the README path of >= 20 increments)")
+          "(target: <= 3 s for the README path of >= 20 increments)")
     print("Newton iterations per increment:", " ".join(str(k) for k in c["newton_iterations"]))
     depth = res.final["residual_depth"]
     print(f"final load {c['W'][-1]:.5g} N, residual depth "

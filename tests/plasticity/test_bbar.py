@@ -10,7 +10,7 @@ from coathertz.fem.farfield import BoussinesqFarField
 from coathertz.fem.material import LinearElastic
 from coathertz.fem.mesh import MeshSpec, build_mesh
 from coathertz.fem.model import FEModel, Region
-from coathertz.fem.plastic_assembly import BBarAssembler
+from coathertz.fem.plastic.assembly import BBarAssembler
 from coathertz.materials import Material
 
 

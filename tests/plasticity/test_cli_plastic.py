@@ -102,7 +102,7 @@ def test_linear_hardening_needs_H():
 
 def test_cli_plastic_says_when_the_mesh_grew(monkeypatch, capsys):
     """A mesh sized for a third of the contact: the run grows it and says so on one line."""
-    import coathertz.fem.plastic_method as pm
+    import coathertz.fem.plastic.method as pm
 
     sized = pm.reference_radius
     monkeypatch.setattr(pm, "reference_radius", lambda *a, **k: sized(*a, **k) / 3.0)

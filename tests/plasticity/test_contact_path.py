@@ -13,8 +13,8 @@ import pytest
 from coathertz.case import ContactCase
 from coathertz.errors import ConvergenceError
 from coathertz.fem.mesh import MeshSpec
-from coathertz.fem.plastic_contact import NewtonSettings
-from coathertz.fem.plastic_method import solve_plastic, write_vtu_series
+from coathertz.fem.plastic.contact import NewtonSettings
+from coathertz.fem.plastic.method import solve_plastic, write_vtu_series
 from coathertz.materials import Body, Material, Plasticity
 
 Y, R = 1e9, 0.01

@@ -10,8 +10,8 @@ import pytest
 
 from coathertz.case import ContactCase
 from coathertz.closedform.hertz import hertz_circular
-from coathertz.fem.plastic_method import solve_plastic
-from coathertz.fem.plastic_onset import hertz_axis_onset
+from coathertz.fem.plastic.method import solve_plastic
+from coathertz.fem.plastic.onset import hertz_axis_onset
 from coathertz.materials import Body, Coating, Material, Plasticity
 
 pytestmark = pytest.mark.slow

@@ -10,7 +10,7 @@ import pytest
 from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError
 from coathertz.fem.mesh import MeshSpec
-from coathertz.fem.plastic_method import ZONE_FILL_MAX, reference_radius, solve_plastic
+from coathertz.fem.plastic.method import ZONE_FILL_MAX, reference_radius, solve_plastic
 from coathertz.materials import Body, Material, Plasticity
 
 Y, R, NU = 1e9, 0.01, 0.3

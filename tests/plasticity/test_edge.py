@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from coathertz.errors import ConvergenceError
-from coathertz.fem.plastic_edge import edge_radius
+from coathertz.fem.plastic.edge import edge_radius
 
 R_NODES = np.linspace(0.0, 2.0e-3, 81)  # node spacing 25 um
 

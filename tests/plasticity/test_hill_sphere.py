@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from coathertz.fem.plastic_sphere import HollowSphere, front_from_pressure, hill_closed_form
+from coathertz.fem.plastic.hollow_sphere import HollowSphere, front_from_pressure, hill_closed_form
 
 A, B, Y = 1.0, 2.0, 1e9
 CF = hill_closed_form(A, B, Y)

@@ -9,7 +9,7 @@ import pytest
 from scipy.optimize import brentq
 
 from coathertz.errors import CoatHertzError
-from coathertz.fem.j2 import J2Plastic, equivalent_stress
+from coathertz.fem.plastic.j2 import J2Plastic, equivalent_stress
 from coathertz.materials import Plasticity
 
 E, NU, Y = 200e9, 0.3, 1.0e9

@@ -7,7 +7,7 @@ import pytest
 from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError
 from coathertz.fem.method import FEMMethod
-from coathertz.fem.plastic_onset import hertz_axis_onset, yield_onset
+from coathertz.fem.plastic.onset import hertz_axis_onset, yield_onset
 from coathertz.materials import Body, Coating, Material, Plasticity
 
 Y = 1e9

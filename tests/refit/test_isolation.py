@@ -27,6 +27,8 @@ def test_closed_form_does_not_import_the_fit():
     ("coathertz.predictor", "coathertz.closedform.method"),
     ("coathertz.refit.rule", "coathertz.closedform.refit.rule"),
     ("coathertz.refit.sweep", "coathertz.fitalpha.sweep"),
+    ("coathertz.fem.plastic_method", "coathertz.fem.plastic.method"),
+    ("coathertz.fem.j2", "coathertz.fem.plastic.j2"),
 ])
 def test_old_paths_forward_with_a_warning(old, new):
     code = (f"import warnings, importlib; warnings.simplefilter('error', DeprecationWarning)\n"

@@ -7,7 +7,7 @@ import math
 import pytest
 
 from coathertz import verification as C
-from coathertz.fem.plastic_onset import hertz_axis_onset
+from coathertz.fem.plastic.onset import hertz_axis_onset
 from coathertz.verification import get_study
 from coathertz.verification.study import HOLDS
 

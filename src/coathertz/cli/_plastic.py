@@ -1,7 +1,7 @@
 """``coathertz fem CASE --plastic [--unload] [--reload] [--steps N]``: the elastic-plastic load path.
 
 Kept out of :mod:`coathertz.cli.fem` (which only dispatches here) so the CLI module stays small;
-the numerics (:mod:`coathertz.fem.plastic_method`) neither print nor write files.
+the numerics (:mod:`coathertz.fem.plastic.method`) neither print nor write files.
 """
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ from coathertz.errors import CoatHertzError
 
 def run_plastic(case: ContactCase, args: argparse.Namespace) -> int:
     from coathertz.fem.method import axisymmetric_equivalent
-    from coathertz.fem.plastic_method import PLASTIC_MESHES, solve_plastic, write_vtu_series
+    from coathertz.fem.plastic.method import PLASTIC_MESHES, solve_plastic, write_vtu_series
 
     eq = axisymmetric_equivalent(case)
     mats = eq.body.deformable_materials if eq is not None else ()
@@ -57,7 +57,7 @@ def run_plastic(case: ContactCase, args: argparse.Namespace) -> int:
     if getattr(args, "plot_dir", None):
         from pathlib import Path
 
-        from coathertz.fem.plastic_plot import plot_load_approach, plot_plastic_zone
+        from coathertz.fem.plastic.plot import plot_load_approach, plot_plastic_zone
 
         d = Path(args.plot_dir)
         d.mkdir(parents=True, exist_ok=True)

@@ -17,7 +17,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     from coathertz.fem.method import CONTACTS, SOLVERS
 
     add_case_arguments(parser)
-    from coathertz.fem.plastic_method import PLASTIC_MESHES
+    from coathertz.fem.plastic.method import PLASTIC_MESHES
 
     levels = " / ".join(str(s.n_a) for s in MESH_LEVELS.values())
     p_levels = " / ".join(str(s.n_a) for s in PLASTIC_MESHES.values())

@@ -1,0 +1,32 @@
+"""Elastic-plastic contact: a rigid sphere pressed into a (coated) axisymmetric body whose
+materials have a yield stress (``coathertz fem --plastic``).
+
+Modules, one job each:
+
+:mod:`~coathertz.fem.plastic.j2`
+    J2 (von Mises) plasticity: the radial return and its consistent tangent, isotropic
+    hardening laws (perfect, linear, power, table).
+:mod:`~coathertz.fem.plastic.assembly`
+    B-bar assembly of the Q2 internal force and tangent (no volumetric locking as the plastic
+    flow becomes incompressible).
+:mod:`~coathertz.fem.plastic.contact`
+    The incremental contact + plasticity Newton loop: load or approach control, adaptive
+    sub-increments with cutbacks, unloading.
+:mod:`~coathertz.fem.plastic.method`
+    The load path as a user runs it: mesh and contact zone sized from the path's largest load or
+    approach and grown when the contact nears the zone's edge, the curves, final fields, JSON /
+    CSV / VTU + ``.pvd`` output.
+:mod:`~coathertz.fem.plastic.edge`
+    The contact edge: the node bracket and a radius estimator valid for elastic and plastic
+    edges alike.
+:mod:`~coathertz.fem.plastic.plot`
+    Load-approach and plastic-zone figures.
+:mod:`~coathertz.fem.plastic.onset`
+    First yield from the elastic solution (load, location, region).
+:mod:`~coathertz.fem.plastic.hollow_sphere`
+    Hill's pressurised hollow sphere: a verification problem with a closed form, for the return
+    mapping and the B-bar assembly (``tests/plasticity/test_hill_sphere.py``).
+
+The elastic model (:mod:`coathertz.fem`) is the other wing; this one builds on its mesh, model,
+far field and post-processing.
+"""

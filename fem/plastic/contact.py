@@ -1,0 +1,336 @@
+r"""Incremental elastic-plastic contact of a rigid paraboloid: Newton on contact + plasticity.
+
+One semi-smooth Newton loop per increment solves equilibrium, the J2 return mapping at every
+quadrature point (:mod:`coathertz.fem.plastic.j2`, B-bar strain of
+:mod:`coathertz.fem.plastic.assembly`) and the frictionless contact conditions together
+(primal-dual active set, Hintermueller, Ito & Kunisch 2002, as in
+:mod:`coathertz.fem.contact`). With the current active set ``A`` and the tangent
+``K_t(u_k)`` iteration ``k`` solves for the new total displacement
+
+.. math:: K_t u_{k+1} = K_t u_k - F_{int}(u_k) - B^T\lambda, \qquad
+          u_{z,i} = g_0(r_i) - \delta \ (i \in A),\qquad u = \bar u \ \text{(essential dofs)},
+
+``lambda_i >= 0`` the nodal contact forces pushing the body down, with either the load
+``sum(lambda) = W`` prescribed (load control, ``delta`` unknown) or the approach ``delta``
+prescribed (approach control, ``W`` unknown). The outer boundary carries the Boussinesq field
+of the current load (linear in ``W``), so both controls are solved exactly by superposition of
+two solves with one factorisation. Then ``A <- {lambda > 0} U {g < 0}``, filled in to a disc
+(all candidates inside the outermost contact node: a convex indenter on these bodies makes a
+simply connected contact; without this the axis node, whose Q2 area weight is zero, and the
+Q2 vertex/mid-side force oscillation at the edge make the set flicker). The increment has
+converged when the active set repeats and the out-of-balance force on the free dofs and the
+load balance are below ``rtol`` times the path's largest load. History is committed only then.
+
+Increments: every target of the load path is reached by sub-increments; a failed Newton loop
+(``max_newton`` iterations, or a diverging residual) halves the sub-increment, a converged one
+lets it grow again (x 1.5); after ``max_cutbacks`` consecutive halvings
+:class:`~coathertz.errors.ConvergenceError`
+is raised.
+Load ``W = 0`` (full unloading under load control) is solved without contact: the residual
+state.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse.linalg as spla
+
+from coathertz.errors import CoatHertzError, ConvergenceError
+from coathertz.fem.plastic.assembly import BBarAssembler
+from coathertz.fem.solvers import nd_lu
+
+#: Complementarity violations below this (relative to the largest multiplier / the approach) are
+#: round-off: such an edge node does not change the active set (cf. ``contact.CYCLE_TOL``).
+ROUND_OFF = 1e-7
+#: An edge node may flip in and out of the active set forever (a cycle), most often at large
+#: plastic indentation. A converged state (residual below ``rtol``) whose active set belongs to
+#: a cycle is accepted if its complementarity violation (relative, as above) is below this (one
+#: edge node penetrating by <= 2 % of the approach, or pulling with <= 2 % of the largest nodal
+#: force); the increment records ``cycle = True``.
+CYCLE_ACCEPT = 2e-2
+#: Load control: a Newton step that changes the approach by more than this fraction of the
+#: previous approach is scaled down to it (damped Newton). With few contact nodes and perfectly
+#: plastic flow the linearised contact stiffness ``sum(lambda_2)`` can be small, and the undamped
+#: step overshoots far into the body. Near convergence steps are small, so the damping is idle
+#: and the convergence stays quadratic.
+DELTA_DAMP = 0.5
+
+
+@dataclass
+class Increment:
+    """One converged (sub-)increment."""
+
+    target: float
+    W: float
+    delta: float
+    newton_iterations: int
+    residuals: list
+    cutbacks: int
+    active: np.ndarray
+    lam: np.ndarray
+    gap: np.ndarray
+    cycle: bool = False
+
+
+@dataclass
+class PathState:
+    """The committed state: total displacement and history of every region."""
+
+    u: np.ndarray
+    states: list
+    active: np.ndarray
+    delta: float = math.nan  # approach of the committed state (load control damping)
+
+
+@dataclass
+class ContactGeometry:
+    """Candidates (``u_z`` dofs, radii, obstacle shape) and essential conditions of a model."""
+
+    cand: np.ndarray
+    r: np.ndarray
+    g0: np.ndarray
+    fixed: np.ndarray
+    vals0: np.ndarray  # essential values at W = 0
+    vals_unit: np.ndarray  # d(values)/dW (far field of a unit load)
+    a_hint: Callable[[float], float] | None = None  # contact radius guess for a load (first contact)
+    grid: tuple[np.ndarray, np.ndarray] | None = None  # grid node of every dof (nested-dissection LU)
+
+
+def geometry_of(model, g0_fun: Callable[[np.ndarray], np.ndarray],
+                a_hint: Callable[[float], float] | None = None) -> ContactGeometry:
+    """Contact candidates and essential conditions of a :class:`coathertz.fem.model.FEModel`."""
+    cand = model.candidates
+    r = model.r_dof[cand]
+    fixed, v1 = model.dirichlet(1.0)
+    fixed0, v0 = model.dirichlet(0.0)
+    if not np.array_equal(fixed, fixed0):
+        raise CoatHertzError("essential dofs must not depend on the load")
+    grid = model.dof_grid() if model.n_dofs == model.n_u else None
+    return ContactGeometry(cand, r, g0_fun(r), fixed, v0, v1 - v0, a_hint, grid)
+
+
+@dataclass
+class NewtonSettings:
+    """Tolerances and caps of the increment loop."""
+
+    rtol: float = 1e-9
+    max_newton: int = 25
+    max_cutbacks: int = 8
+    grow: float = 1.5
+
+
+@dataclass
+class PathRecord:
+    """Everything a load path produced."""
+
+    increments: list[Increment] = field(default_factory=list)
+    state: PathState | None = None
+    wall_time: float = 0.0
+    factorisations: int = 0
+
+
+def _solve_constrained(K, rhs, fixed, vals_list, grid=None):
+    """Solve ``K u = rhs_k`` with ``u[fixed] = vals_k`` for each ``(rhs_k, vals_k)`` (one LU, in the
+    nested-dissection order of ``grid`` if given, :func:`coathertz.fem.solvers.nd_lu`; else
+    SuperLU's minimum degree)."""
+    n = K.shape[0]
+    free = np.ones(n, dtype=bool)
+    free[fixed] = False
+    Kc = K.tocsc()
+    Kff = Kc[free][:, free]
+    Kfd = Kc[free][:, fixed]
+    if grid is not None:
+        solve = nd_lu(Kff, (grid[0][free], grid[1][free]))
+    else:
+        solve = spla.splu(Kff.tocsc(), permc_spec="MMD_AT_PLUS_A", options={"SymmetricMode": True}).solve
+    out = []
+    for rh, val in zip(rhs, vals_list, strict=True):
+        u = np.zeros(n)
+        u[fixed] = val
+        u[free] = solve(rh[free] - Kfd @ val)
+        out.append(u)
+    return out
+
+
+class IncrementalContact:
+    """The increment loop (module docstring) for one assembled model.
+
+    Parameters
+    ----------
+    assembler
+        :class:`~coathertz.fem.plastic.assembly.BBarAssembler` of the model.
+    geom
+        :class:`ContactGeometry` (candidates, obstacle, essential conditions).
+    control
+        ``"load"`` (targets are loads ``W`` [N]) or ``"approach"`` (targets are ``delta`` [m]).
+    force_scale
+        Force [N] the residual tolerance refers to (the path's largest load).
+    """
+
+    def __init__(self, assembler: BBarAssembler, geom: ContactGeometry, control: str, force_scale: float,
+                 settings: NewtonSettings | None = None) -> None:
+        if control not in ("load", "approach"):
+            raise CoatHertzError(f"control must be 'load' or 'approach', got {control!r}")
+        self.asm, self.geom, self.control = assembler, geom, control
+        self.scale = float(force_scale)
+        self.settings = settings or NewtonSettings()
+        self.factorisations = 0
+
+    def initial_state(self) -> PathState:
+        states = [law.initial_state(self.asm.w[els].shape) for els, law in self.asm.regions]
+        return PathState(np.zeros(self.asm.n), states, np.zeros(len(self.geom.cand), dtype=bool))
+
+    # -- one Newton solve with a fixed active set -------------------------------------------------
+    def _linear_step(self, K, rhs, active, target):
+        g = self.geom
+        A = g.cand[active]
+        fixed = np.concatenate([g.fixed, A])
+        order = np.argsort(fixed)
+        fixed = fixed[order]
+        zf = np.zeros(len(g.fixed))
+        nA = len(A)
+        if self.control == "load":
+            W = target
+            v1 = np.concatenate([g.vals0 + W * g.vals_unit, g.g0[active]])[order]
+            v2 = np.concatenate([zf, -np.ones(nA)])[order]
+            u1, u2 = _solve_constrained(K, [rhs, np.zeros_like(rhs)], fixed, [v1, v2], g.grid)
+            self.factorisations += 1
+            l1 = (rhs - K @ u1)[A]
+            l2 = -(K @ u2)[A]
+            if nA == 0 or abs(l2.sum()) == 0.0:
+                return u1, math.nan, W, np.zeros(0)
+            delta = (W - l1.sum()) / l2.sum()
+            return u1 + delta * u2, delta, W, l1 + delta * l2
+        delta = target
+        v1 = np.concatenate([g.vals0, g.g0[active] - delta])[order]
+        v3 = np.concatenate([g.vals_unit, np.zeros(nA)])[order]
+        u1, u3 = _solve_constrained(K, [rhs, np.zeros_like(rhs)], fixed, [v1, v3], g.grid)
+        self.factorisations += 1
+        l1 = (rhs - K @ u1)[A]
+        l3 = -(K @ u3)[A]
+        W = l1.sum() / (1.0 - l3.sum()) if nA else 0.0
+        return u1 + W * u3, delta, W, l1 + W * l3
+
+    def _update_active(self, active, lam_full, gap, delta):
+        """New active set; round-off-level violations at single nodes do not change it."""
+        lam_scale = max(float(np.abs(lam_full).max()) if lam_full.size else 0.0, 1e-300)
+        drop = active & (lam_full <= 0.0)
+        add = ~active & (gap < 0.0)
+        gscale = max(abs(delta) if math.isfinite(delta) else 0.0, float(np.abs(self.geom.g0).max()) * 1e-6)
+        drop &= lam_full < -ROUND_OFF * lam_scale
+        add &= gap < -ROUND_OFF * gscale
+        new = (active & ~drop) | add
+        if self.control == "load" and not new.any():
+            new = self.geom.g0 <= self.geom.g0.min()
+        if new.any():  # the contact area is a disc: fill in up to the outermost contact node
+            new = np.arange(len(new)) <= np.nonzero(new)[0].max()
+        return new
+
+    def solve_increment(self, state: PathState, target: float) -> tuple[PathState, Increment] | None:
+        """Newton loop to ``target`` from the committed ``state``; ``None`` if it fails."""
+        s = self.settings
+        g = self.geom
+        no_contact = self.control == "load" and target == 0.0
+        active = np.zeros_like(state.active) if no_contact else state.active.copy()
+        if not no_contact and not active.any() and self.control == "load":
+            a0 = g.a_hint(target) if g.a_hint is not None else 0.0
+            active = g.r <= max(a0, g.r[1])
+        if self.control == "approach" and not active.any():
+            active = (g.g0 - target - state.u[g.cand]) < 0
+        u = state.u.copy()
+        F, K, _, _ = self.asm.evaluate(u, state.states)
+        residuals = []
+        seen: set[bytes] = set()
+        delta_prev = state.delta
+        for it in range(1, s.max_newton + 1):
+            rhs = K @ u - F
+            u_new, delta, W, lam = self._linear_step(K, rhs, active, target)
+            if (self.control == "load" and math.isfinite(delta_prev) and delta_prev > 0
+                    and math.isfinite(delta) and abs(delta - delta_prev) > DELTA_DAMP * delta_prev):
+                step = DELTA_DAMP * delta_prev / abs(delta - delta_prev)
+                u_new = u + step * (u_new - u)
+                delta = delta_prev + step * (delta - delta_prev)
+            delta_prev = delta
+            lam_full = np.zeros(len(g.cand))
+            lam_full[active] = lam
+            if self.control == "load" and not no_contact:
+                gap = g.g0 - delta - u_new[g.cand]
+            elif self.control == "approach":
+                gap = g.g0 - target - u_new[g.cand]
+            else:
+                gap = np.full(len(g.cand), np.inf)
+            new_active = active if no_contact else self._update_active(active, lam_full, gap, delta)
+            u = u_new
+            F, K, _, trial = self.asm.evaluate(u, state.states)
+            # residual: out-of-balance force on the free dofs, load balance on the active set
+            R = F.copy()
+            R[g.fixed] = 0.0
+            R[g.cand[active]] = 0.0
+            lam_eq = -F[g.cand[active]]
+            bal = (W - lam_eq.sum()) if self.control == "load" else 0.0
+            res = math.hypot(float(np.linalg.norm(R)), bal) / self.scale
+            residuals.append(res)
+            if not np.isfinite(res) or (it > 8 and res > 1e2):  # out-of-balance >> the load: diverging
+                return None
+            same = np.array_equal(new_active, active)
+            cycle = False
+            if not same and res <= s.rtol and new_active.tobytes() in seen:
+                lam_scale = max(float(np.abs(lam_eq).max()) if lam_eq.size else 0.0, 1e-300)
+                v_lam = max(0.0, -float(lam_eq.min())) / lam_scale if lam_eq.size else 0.0
+                gin = gap[~active]
+                v_gap = max(0.0, -float(gin.min())) / max(abs(delta), 1e-300) if gin.size else 0.0
+                cycle = max(v_lam, v_gap) < CYCLE_ACCEPT
+            if (same or cycle) and res <= s.rtol:
+                lam_out = np.zeros(len(g.cand))
+                lam_out[active] = lam_eq
+                W_out = float(lam_eq.sum()) if self.control == "approach" else W
+                inc = Increment(target, W_out, delta, it, residuals, 0, active.copy(), lam_out, gap, cycle)
+                return PathState(u, trial, active.copy(), delta), inc
+            seen.add(active.tobytes())
+            active = new_active
+        return None
+
+    def run(self, targets: Sequence[float], state: PathState | None = None, start: float = 0.0,
+            progress: Callable[[Increment, PathState, int], None] | None = None) -> PathRecord:
+        """Follow ``targets`` (loads or approaches) from ``start`` with adaptive sub-increments;
+        ``progress(increment, state, target_index)`` is called after each converged one."""
+        t0 = time.perf_counter()
+        s = self.settings
+        state = state or self.initial_state()
+        rec = PathRecord()
+        current = float(start)
+        for k, tgt in enumerate(targets):
+            tgt = float(tgt)
+            step = tgt - current
+            cut = 0
+            while True:
+                nxt = tgt if abs(tgt - current) <= abs(step) * (1 + 1e-12) else current + step
+                out = self.solve_increment(state, nxt)
+                if out is None:
+                    cut += 1
+                    if cut > s.max_cutbacks:
+                        raise ConvergenceError(
+                            f"increment to {self.control} {nxt:.6g} failed after {s.max_cutbacks} cutbacks "
+                            f"(from {current:.6g}; max_newton = {s.max_newton})")
+                    step *= 0.5
+                    continue
+                state, inc = out
+                inc.cutbacks = cut
+                cut = 0  # max_cutbacks counts consecutive failures
+                rec.increments.append(inc)
+                if progress is not None:
+                    progress(inc, state, k)
+                current = nxt
+                if nxt == tgt:
+                    break
+                if inc.newton_iterations <= 6:
+                    step = math.copysign(min(abs(step) * s.grow, abs(tgt - current)), tgt - current)
+        rec.state = state
+        rec.wall_time = time.perf_counter() - t0
+        rec.factorisations = self.factorisations
+        return rec

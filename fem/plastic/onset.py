@@ -1,0 +1,172 @@
+r"""Elastic yield onset: the load at which the von Mises stress first reaches the yield stress.
+
+No plasticity is computed: the elastic FE solution (:class:`coathertz.fem.method.FEMMethod`) at a
+load ``W`` gives the largest ratio :math:`\rho(W) = \max \sigma_{vM} / Y` over the coating
+(yield stress ``Yc``) and the substrate (``Ys``), and where it occurs. For a homogeneous body the
+stress field scales with :math:`p_0 \propto W^{1/3}` (Hertz, Johnson 1985 eq 4.23), so
+:math:`W_y = W / \rho^3`; a coating breaks the self-similarity, so ``log rho`` is driven to zero
+by secant steps in ``log W`` (the first with the Hertz slope 1/3) until :math:`|\rho - 1| <`
+``tol`` (2-4 elastic solves).
+
+The maximum is located in two stages: the largest quadrature-point value, then a 21 x 21 probe
+grid (two element sizes wide) of the per-region :math:`L^2`-projected stress field
+(:class:`coathertz.fem.post.StressField`) around it, with a parabolic refinement.
+
+Reference (homogeneous half-space, rigid sphere, nu = 0.3): first yield on the axis at
+``p0 = 1.60 Y``, depth ``z = 0.48 a`` (Johnson 1985, Section 6.2); :func:`hertz_axis_onset` gives
+the closed-form numbers from the Hertz stresses on the axis (Johnson eq 3.45).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import minimize_scalar
+
+from coathertz.case import ContactCase
+from coathertz.errors import CoatHertzError, ConvergenceError
+from coathertz.fem.method import FEMMethod, axisymmetric_equivalent
+from coathertz.fem.post import StressField, quad_stress, von_mises
+
+
+def hertz_axis_onset(nu: float) -> tuple[float, float]:
+    """``(p0/Y, z/a)`` of first yield under a Hertz pressure (Johnson 1985, eq 3.45 on the axis)."""
+
+    def vm_over_p0(zeta: float) -> float:
+        s_z = -1.0 / (1.0 + zeta**2)
+        s_r = -((1.0 + nu) * (1.0 - zeta * math.atan(1.0 / zeta)) - 0.5 / (1.0 + zeta**2))
+        return abs(s_r - s_z)
+
+    opt = minimize_scalar(lambda z: -vm_over_p0(z), bounds=(0.05, 2.0), method="bounded",
+                          options={"xatol": 1e-12})
+    return 1.0 / vm_over_p0(opt.x), float(opt.x)
+
+
+@dataclass(frozen=True)
+class YieldOnset:
+    """First yield of an elastic solution (see module docstring)."""
+
+    W_y: float  # load at first yield [N]
+    p0_y: float  # maximum contact pressure at W_y [Pa]
+    a_y: float  # contact radius at W_y [m]
+    where: str  # "coating", "interface" or "substrate"
+    region: str  # the region that yields: "coating" or "substrate"
+    r: float  # location [m]
+    z: float  # location [m] (z < 0 inside the body)
+    Y: float  # yield stress of that region [Pa]
+    solves: int
+    rho: float  # max sigma_vM / Y at W_y (1 within tol)
+
+    @property
+    def p0_over_Y(self) -> float:
+        return self.p0_y / self.Y
+
+
+def _yield_stresses(case: ContactCase, Yc: float | None, Ys: float | None) -> tuple[float, float]:
+    eq = axisymmetric_equivalent(case)
+    if eq is None:
+        raise CoatHertzError("yield onset needs a case the FE model supports: " + case.describe())
+    body = eq.body
+
+    def pick(given, m, name):
+        if given is not None:
+            if not (0 < given < math.inf):
+                raise CoatHertzError(f"{name} must satisfy 0 < {name} < inf [Pa], got {given!r}")
+            return float(given)
+        if m is not None and m.plasticity is not None:
+            return m.plasticity.Y
+        return math.inf
+
+    Yc_ = pick(Yc, body.coating.material if body.is_coated else None, "Yc")
+    Ys_ = pick(Ys, None if body.material.is_rigid else body.material, "Ys")
+    if math.isinf(Yc_) and math.isinf(Ys_):
+        raise CoatHertzError("yield onset needs a yield stress: give Yc/Ys or Material(..., plasticity=...)")
+    return Yc_, Ys_
+
+
+def _locate(model, x, k: int, r0: float, z0: float, s: float) -> tuple[float, float, float]:
+    """Refine the maximum of von Mises in region ``k`` near ``(r0, z0)`` on the projected field."""
+    sf = StressField(model, x)
+    els = model.regions[k].elements
+    pz = model.lm.mesh.p[:, model.lm.mesh.t[:, els]]
+    rmin, rmax, zmin, zmax = pz[0].min(), pz[0].max(), pz[1].min(), pz[1].max()
+    rr = np.clip(np.linspace(r0 - 2 * s, r0 + 2 * s, 21), rmin + 1e-9 * s, rmax - 1e-9 * s)
+    zz = np.clip(np.linspace(z0 - 2 * s, z0 + 2 * s, 21), zmin + 1e-9 * s, zmax - 1e-9 * s)
+    R, Z = np.meshgrid(np.unique(rr), np.unique(zz), indexing="ij")
+    vm = von_mises(sf.at(k, np.vstack([R.ravel(), Z.ravel()]))).reshape(R.shape)
+    i, j = np.unravel_index(int(np.argmax(vm)), vm.shape)
+
+    def parab(vals, coords, idx):
+        if 0 < idx < len(coords) - 1:
+            y0, y1, y2 = vals[idx - 1], vals[idx], vals[idx + 1]
+            den = y0 - 2 * y1 + y2
+            if den < 0:
+                t = 0.5 * (y0 - y2) / den
+                return coords[idx] + t * (coords[idx + 1] - coords[idx]), y1 - 0.25 * (y0 - y2) * t
+        return coords[idx], vals[idx]
+
+    r_m, v1 = parab(vm[:, j], R[:, 0], i)
+    z_m, v2 = parab(vm[i, :], Z[0, :], j)
+    return float(r_m), float(z_m), float(max(v1, v2, vm[i, j]))
+
+
+def yield_onset(case: ContactCase, method: FEMMethod | None = None, Yc: float | None = None,
+                Ys: float | None = None, tol: float = 1e-3, max_solves: int = 8) -> YieldOnset:
+    """Load ``W_y`` of first yield of ``case`` (its load is the first guess) and where it occurs.
+
+    Parameters
+    ----------
+    case
+        A case the FE model supports; its load ``W`` starts the iteration.
+    method
+        The elastic FE method (default ``FEMMethod()``, default mesh).
+    Yc, Ys
+        Yield stresses of coating and substrate [Pa]; default: from the materials' ``plasticity``
+        (a region without either never yields).
+    tol
+        Stop when ``|max sigma_vM / Y - 1| < tol``.
+    """
+    from dataclasses import replace
+
+    Yc_, Ys_ = _yield_stresses(case, Yc, Ys)
+    method = method or FEMMethod()
+    W = case.W
+    prev: tuple[float, float] | None = None  # (log W, log rho) of the previous solve
+    for it in range(1, max_solves + 1):
+        c = replace(case, W=W)
+        res, model, path = method.solve_full(c)
+        lm = model.lm
+        names = (["coating"] if lm.h > 0 else []) + ([] if lm.rigid_base else ["substrate"])
+        sig = quad_stress(model, path.x)
+        best = (-1.0, -1, 0.0, 0.0)
+        coords = model.basis.global_coordinates()
+        for k, name in enumerate(names):
+            Y = Yc_ if name == "coating" else Ys_
+            if math.isinf(Y):
+                continue
+            ratio = von_mises(sig[k]) / Y
+            i = np.unravel_index(int(np.argmax(ratio)), ratio.shape)
+            els = model.regions[k].elements
+            if ratio[i] > best[0]:
+                best = (float(ratio[i]), k, float(coords[0][els][i]), float(coords[1][els][i]))
+        rho, k, r0, z0 = best
+        s = lm.a_ref / lm.spec.n_a
+        if lm.h > 0:
+            s = min(s, lm.h / max(lm.spec.n_coat, 1))
+        r_m, z_m, vm_m = _locate(model, path.x, k, r0, z0, s)
+        Y = Yc_ if names[k] == "coating" else Ys_
+        rho = max(rho, vm_m / Y)
+        if abs(rho - 1.0) < tol:
+            where = names[k]
+            if lm.h > 0 and abs(z_m + lm.h) <= 0.05 * max(lm.h, s) + 1e-12:
+                where = "interface"
+            return YieldOnset(W, res.p0, res.a, where, names[k], r_m, z_m, Y, it, rho)
+        slope = 1.0 / 3.0
+        if prev is not None and abs(math.log(W) - prev[0]) > 1e-12:
+            s_ = (math.log(rho) - prev[1]) / (math.log(W) - prev[0])
+            slope = s_ if 0.05 < s_ < 2.0 else slope
+        prev = (math.log(W), math.log(rho))
+        W = W * math.exp(-math.log(rho) / slope)
+    raise ConvergenceError(f"yield onset: max sigma_vM / Y = {rho:.4f} after max_solves={max_solves} solves")
