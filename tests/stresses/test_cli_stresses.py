@@ -49,3 +49,33 @@ def test_bad_input_one_line(capsys, extra, text):
     assert main(["stresses", *BASE, *extra]) == 2
     err = capsys.readouterr().err.strip()
     assert text in err and "\n" not in err and "Traceback" not in err
+
+
+def test_png_and_vtu_files(tmp_path, capsys):
+    """--png draws the slices; --vtu holds the whole field: one point per (x, y, z) of the
+    lattice, the six components, and a von Mises maximum equal to the printed one."""
+    meshio = pytest.importorskip("meshio")
+    png, vtu = tmp_path / "s.png", tmp_path / "s.vtu"
+    args = ["stresses", *BASE, "--coating", "400 GPa,0.25,30 um", "--grid", "32", "--json",
+            "--png", str(png), "--vtu", str(vtu)]
+    assert main(args) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 20_000
+    m = meshio.read(vtu)
+    nz = len(d["depths"])
+    assert m.points.shape == (nz * 32 * 32, 3)
+    assert m.cells_dict["hexahedron"].shape == ((nz - 1) * 31 * 31, 8)
+    assert {f"sigma_{c}" for c in ("xx", "yy", "zz", "yz", "xz", "xy")} <= set(m.point_data)
+    assert float(m.point_data["von_mises"].max()) == pytest.approx(d["vm_max"]["value"], rel=1e-12)
+    assert m.points[:, 2].max() == 0.0 and m.points[:, 2].min() == pytest.approx(-max(d["depths"]))
+
+
+@pytest.mark.parametrize("flag, name, words", [
+    ("--png", "out.jpg", "must end in .png"),
+    ("--vtu", "out.vtk", "must end in .vtu"),
+    ("--vtu", "missing/out.vtu", "does not exist"),
+])
+def test_bad_output_file_is_refused_before_solving(tmp_path, capsys, flag, name, words):
+    assert main(["stresses", *BASE, "--grid", "32", flag, str(tmp_path / name)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert words in err and len(err.splitlines()) == 1

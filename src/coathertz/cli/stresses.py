@@ -28,13 +28,23 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--depths", type=_depths, default=None, metavar="Z1,Z2,...",
                         help="depths below body2's surface [um] (default: through the coating, "
                              "both sides of its interface, down to 3a)")
+    parser.add_argument("--png", metavar="OUT.png",
+                        help="von Mises stress on the x-z and y-z slices through its maximum")
+    parser.add_argument("--vtu", metavar="OUT.vtu",
+                        help="the whole field (six components, von Mises, first principal) for ParaView")
     parser.add_argument("--json", action="store_true", help="machine-readable output")
 
 
 def run(args: argparse.Namespace) -> int:
     import math
 
-    from coathertz.cli._common import case_from_args, format_table, list_examples, to_json
+    from coathertz.cli._common import (
+        case_from_args,
+        check_output_file,
+        format_table,
+        list_examples,
+        to_json,
+    )
     from coathertz.errors import CoatHertzError
     from coathertz.fft.method import FFTMethod
     from coathertz.fft.stresses import contact_stresses
@@ -44,6 +54,11 @@ def run(args: argparse.Namespace) -> int:
         return list_examples()
     if not (math.isfinite(args.mu) and 0 <= args.mu <= 1):
         raise CoatHertzError(f"--mu: friction coefficient must be in [0, 1], got {args.mu!r}")
+    for flag, path, suffix in (("--png", args.png, ".png"), ("--vtu", args.vtu, ".vtu")):
+        if path:  # before any computing
+            if not str(path).lower().endswith(suffix):
+                raise CoatHertzError(f"{flag} {path!r}: the file name must end in {suffix}")
+            check_output_file(path, flag)
     case = case_from_args(args)
     body = case.body2
     if args.depths is not None:
@@ -60,6 +75,7 @@ def run(args: argparse.Namespace) -> int:
     if body.coating is not None:
         inter = contact_stresses(case, res, depths=[body.coating.h], **kw).sigma[0]
     summary = summarise(body, field.x, field.y, field.z, field.sigma, res.p0, inter)
+    _write_files(args, case, res, field)
     if args.json:
         print(to_json({"method": args.method, "mu": args.mu, "a": res.a, "p0": res.p0,
                        "depths": field.z.tolist(), **summary}))
@@ -75,3 +91,20 @@ def run(args: argparse.Namespace) -> int:
         rows.append([key, f"{e['value'] / 1e6:.5g}", f"{e['over_p0']:.4f}", at])
     print(format_table(["", "value [MPa]", "/ p0", "at x, y, z [um]"], rows))
     return 0
+
+
+def _write_files(args: argparse.Namespace, case, res, field) -> None:
+    from coathertz.cli._common import writing
+    from coathertz.stress_output import slice_figure, write_png, write_vtu
+
+    if args.png:
+        coat = case.body2.coating
+        title = (f"{case.label or 'case'}: von Mises stress in body2, {args.method.upper()} "
+                 f"{args.grid}^2, mu = {args.mu:g}, p0 = {res.p0 / 1e6:.4g} MPa")
+        fig = slice_figure(field.x, field.y, field.z, field.sigma, a_x=res.r_a, a_y=res.r_b,
+                           h=None if coat is None else coat.h, title=title)
+        with writing(args.png, "--png"):
+            write_png(args.png, fig)
+    if args.vtu:
+        with writing(args.vtu, "--vtu"):
+            write_vtu(args.vtu, field.x, field.y, field.z, field.sigma)
