@@ -58,12 +58,16 @@ the substrate's (or rigid base's) far field into a field that has not felt it ye
 
 Accuracy near the surface
 -------------------------
-The cell pressures are piecewise constant, so within a few cells of the surface the field
-sees the staircase of the pressure at the contact edge. Measured against Huber's field
-(Hertz pressure at the cell centres, domain 4a): max error 2.5 % / 1.6 % / 0.75 % / 0.26 % of
-p0 at z = 0.025 / 0.05 / 0.1 / 0.2 a on 128^2 and 1.2 % / 0.59 % / 0.23 % at 0.025 / 0.05 /
-0.1 a on 256^2 (about first order in dx near the edge); on the surface itself inside the
-contact, 0.8 % (128^2) and 0.16 % (256^2). Below about 6 cells the error is < 0.3 % of p0.
+The responses times ``sinc sinc`` are the exact field of a pressure uniform over each cell
+(piecewise-constant patches), so the consistent cell value is the cell mean of a continuous
+pressure (what the DC-FFT contact solver delivers), not its sample at the cell centre. With
+centre samples of Hertz's pressure the staircase at the contact edge is misplaced by up to
+half a cell: max error against Huber's field 2.5 % / 1.6 % / 0.75 % / 0.26 % of p0 at
+z = 0.025 / 0.05 / 0.1 / 0.2 a on 128^2 (domain 4a), about first order. With cell means:
+1.2 % / 0.52 % / 0.19 % / 0.06 % on 128^2 and 0.39 % / 0.14 % / 0.05 % / 0.01 % on 256^2;
+at z = 0.1 a 0.67 % / 0.19 % / 0.05 % on 64^2 / 128^2 / 256^2, observed order about 1.9
+(tests/stresses/test_fft_stresses.py). Within about 1.5 cells of the surface the error is
+the cell size itself (the field varies on the scale z).
 
 """
 
