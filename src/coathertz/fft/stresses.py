@@ -67,7 +67,11 @@ z = 0.025 / 0.05 / 0.1 / 0.2 a on 128^2 (domain 4a), about first order. With cel
 1.2 % / 0.52 % / 0.19 % / 0.06 % on 128^2 and 0.39 % / 0.14 % / 0.05 % / 0.01 % on 256^2;
 at z = 0.1 a 0.67 % / 0.19 % / 0.05 % on 64^2 / 128^2 / 256^2, observed order about 1.9
 (tests/stresses/test_fft_stresses.py). Within about 1.5 cells of the surface the error is
-the cell size itself (the field varies on the scale z).
+the cell size itself (the field varies on the scale z). On the surface (Johnson eq. 3.41)
+the error is 0.29 % / 0.17 % / 0.11 % of p0 beyond 1.5 cells from the contact edge on
+64^2 / 128^2 / 256^2; in the edge cells a cell mean cannot equal the value at the centre
+of a square-root edge: 9.3 % / 6.6 % / 4.7 % (order 1/2), and the peak radial tension
+(1 - 2 nu)/3 p0 at r = a is reached only as dx -> 0 (0.124 p0 at 128^2 instead of 0.133).
 
 """
 
