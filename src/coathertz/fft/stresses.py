@@ -397,11 +397,15 @@ def default_depths(body: Body, a: float) -> np.ndarray:
 
 def contact_stresses(case: ContactCase, result: ContactResult, *, body: int = 2,
                      depths=None, mu: float = 0.0, direction: float = 0.0,
-                     interface: str = "bonded", pad: int = 4) -> StressField:
+                     interface: str = "bonded", pad: int = 4,
+                     Q: float | None = None) -> StressField:
     """Stress field in ``body`` (1 or 2) from an FFT solution kept with its fields.
 
     ``mu`` > 0 adds full sliding friction ``q = mu p`` acting on the body in the direction
     ``direction`` [rad] from x (Coulomb, no normal-tangential coupling in the pressure).
+    ``Q`` [N] (``0 <= Q < mu W``) instead applies the partial-slip traction of
+    :func:`coathertz.fft.partial_slip.solve_partial_slip` (homogeneous bodies only; Goodman's
+    approximation).
     """
     if body not in (1, 2):
         raise CoatHertzError(f"body must be 1 or 2, got {body!r}")
@@ -420,10 +424,33 @@ def contact_stresses(case: ContactCase, result: ContactResult, *, body: int = 2,
         raise CoatHertzError(
             f"body{body}: depths must be in [0, h = {b.coating.h:g}] m on a rigid substrate")
     q = mu * p if mu > 0 else None
+    if Q is not None:
+        q = _partial_slip_traction(case, grid, p, Q, mu, direction)
     sig = stresses_surface(grid, z, frf, p=p,
                            qx=None if q is None else np.cos(direction) * q,
                            qy=None if q is None else np.sin(direction) * q, pad=pad)
     meta = {"method": "fft", "body": body, "mu": mu, "direction": direction,
             "interface": interface, "pad": pad, "grid": grid.describe(),
-            "coupling": "none (pressure from the frictionless normal solution)"}
+            "coupling": "none (pressure from the frictionless normal solution)",
+            "Q": Q, "traction": "sliding" if Q is None else "partial slip"}
     return StressField(x, y, z, sig, meta)
+
+
+def _partial_slip_traction(case: ContactCase, grid: Grid, p: np.ndarray, Q: float, mu: float,
+                           direction: float) -> np.ndarray:
+    """Cattaneo--Mindlin shear traction on the cell pressure (homogeneous bodies only)."""
+    from coathertz.fft.partial_slip import solve_partial_slip
+
+    if Q >= mu * case.W:  # the case's load (the cell sum differs by the solver's tolerance)
+        raise CoatHertzError(
+            f"tangential load Q = {Q:g} N >= mu W = {mu * case.W:g} N: the contact slides "
+            "(full sliding, q = mu p; partial slip needs Q < mu W)")
+    bodies = []
+    for i, b in enumerate((case.body1, case.body2), start=1):
+        if b.coating is not None or b.is_stacked:
+            raise CoatHertzError(
+                f"body{i}: partial slip (Q) needs homogeneous bodies; a coated body's tangential "
+                "compliance is not modelled yet")
+        if not b.material.is_rigid:
+            bodies.append((b.material.G, b.material.nu))
+    return solve_partial_slip(p, grid, bodies, Q, mu, direction).q
