@@ -79,3 +79,29 @@ def test_bad_output_file_is_refused_before_solving(tmp_path, capsys, flag, name,
     assert main(["stresses", *BASE, "--grid", "32", flag, str(tmp_path / name)]) == 2
     err = capsys.readouterr().err.strip()
     assert words in err and len(err.splitlines()) == 1
+
+
+def test_partial_slip_between_frictionless_and_sliding(capsys):
+    # measured on 64^2 (W = 100 N, mu = 0.3): surface tension 0.133 (Q = 0), 0.404 (Q = 15 N),
+    # 0.550 (Q = 29.7 N), 0.552 p0 (full sliding)
+    out = {}
+    for extra in ([], ["--mu", "0.3", "--Q", "15 N"], ["--mu", "0.3", "--Q", "29.7 N"],
+                  ["--mu", "0.3"]):
+        assert main(["stresses", *BASE, "--grid", "64", "--json", *extra]) == 0
+        d = json.loads(capsys.readouterr().out)
+        out[d["Q"], d["mu"]] = d["tensile_max_surface"]["over_p0"]
+    t0, t_half, t_near, t_slide = out.values()
+    assert t0 < t_half < t_near <= t_slide * (1 + 1e-9), out
+    assert t_near == pytest.approx(t_slide, rel=0.02), out
+
+
+@pytest.mark.parametrize(("extra", "text"), [
+    (["--mu", "0.3", "--Q", "30 N"], "the contact slides"),
+    (["--mu", "0.3", "--Q=-1 N"], "--Q: tangential load Q"),
+    (["--Q", "1 N"], "--Q: partial slip needs a friction coefficient --mu > 0"),
+    (["--coating", "400 GPa,0.25,30 um", "--mu", "0.3", "--Q", "1 N"], "needs homogeneous bodies"),
+])
+def test_partial_slip_bad_input_one_line(capsys, extra, text):
+    assert main(["stresses", *BASE, "--grid", "32", *extra]) == 2
+    err = capsys.readouterr().err.strip()
+    assert text in err and len(err.splitlines()) == 1, err

@@ -25,6 +25,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--grid", type=int, default=128, metavar="N", help="FFT cells per side")
     parser.add_argument("--mu", type=float, default=0.0, metavar="M",
                         help="full sliding friction q = mu p along x on body2 (0 <= mu <= 1)")
+    parser.add_argument("--Q", default=None, metavar="F",
+                        help="tangential load along x with partial slip, 0 <= Q < mu W "
+                             "(force with units, e.g. '2 N'; needs --mu > 0; homogeneous bodies)")
     parser.add_argument("--depths", type=_depths, default=None, metavar="Z1,Z2,...",
                         help="depths below body2's surface [um] (default: through the coating, "
                              "both sides of its interface, down to 3a)")
@@ -59,6 +62,13 @@ def run(args: argparse.Namespace) -> int:
             if not str(path).lower().endswith(suffix):
                 raise CoatHertzError(f"{flag} {path!r}: the file name must end in {suffix}")
             check_output_file(path, flag)
+    Q = None
+    if args.Q is not None:
+        from coathertz.casefile import quantity
+
+        Q = quantity(args.Q, "force", "--Q: tangential load Q", minimum=">=0")
+        if not args.mu > 0:
+            raise CoatHertzError("--Q: partial slip needs a friction coefficient --mu > 0")
     case = case_from_args(args)
     body = case.body2
     if args.depths is not None:
@@ -69,7 +79,7 @@ def run(args: argparse.Namespace) -> int:
                 f"--depths: body2 depth {bad[0] * 1e6:g} um outside the body "
                 f"(valid: 0 to {bottom * 1e6:g} um)")
     res = FFTMethod(n=args.grid).solve(case)
-    kw = {"mu": args.mu}
+    kw = {"mu": args.mu, "Q": Q}
     field = contact_stresses(case, res, depths=args.depths, **kw)
     inter = None
     if body.coating is not None:
@@ -77,7 +87,7 @@ def run(args: argparse.Namespace) -> int:
     summary = summarise(body, field.x, field.y, field.z, field.sigma, res.p0, inter)
     _write_files(args, case, res, field)
     if args.json:
-        print(to_json({"method": args.method, "mu": args.mu, "a": res.a, "p0": res.p0,
+        print(to_json({"method": args.method, "mu": args.mu, "Q": Q, "a": res.a, "p0": res.p0,
                        "depths": field.z.tolist(), **summary}))
         return 0
     print(f"coathertz stresses: {case.label or 'case'}, FFT {args.grid}^2, {field.z.size} depths,"

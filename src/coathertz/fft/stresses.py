@@ -58,12 +58,20 @@ the substrate's (or rigid base's) far field into a field that has not felt it ye
 
 Accuracy near the surface
 -------------------------
-The cell pressures are piecewise constant, so within a few cells of the surface the field
-sees the staircase of the pressure at the contact edge. Measured against Huber's field
-(Hertz pressure at the cell centres, domain 4a): max error 2.5 % / 1.6 % / 0.75 % / 0.26 % of
-p0 at z = 0.025 / 0.05 / 0.1 / 0.2 a on 128^2 and 1.2 % / 0.59 % / 0.23 % at 0.025 / 0.05 /
-0.1 a on 256^2 (about first order in dx near the edge); on the surface itself inside the
-contact, 0.8 % (128^2) and 0.16 % (256^2). Below about 6 cells the error is < 0.3 % of p0.
+The responses times ``sinc sinc`` are the exact field of a pressure uniform over each cell
+(piecewise-constant patches), so the consistent cell value is the cell mean of a continuous
+pressure (what the DC-FFT contact solver delivers), not its sample at the cell centre. With
+centre samples of Hertz's pressure the staircase at the contact edge is misplaced by up to
+half a cell: max error against Huber's field 2.5 % / 1.6 % / 0.75 % / 0.26 % of p0 at
+z = 0.025 / 0.05 / 0.1 / 0.2 a on 128^2 (domain 4a), about first order. With cell means:
+1.2 % / 0.52 % / 0.19 % / 0.06 % on 128^2 and 0.39 % / 0.14 % / 0.05 % / 0.01 % on 256^2;
+at z = 0.1 a 0.67 % / 0.19 % / 0.05 % on 64^2 / 128^2 / 256^2, observed order about 1.9
+(tests/stresses/test_fft_stresses.py). Within about 1.5 cells of the surface the error is
+the cell size itself (the field varies on the scale z). On the surface (Johnson eq. 3.41)
+the error is 0.29 % / 0.17 % / 0.11 % of p0 beyond 1.5 cells from the contact edge on
+64^2 / 128^2 / 256^2; in the edge cells a cell mean cannot equal the value at the centre
+of a square-root edge: 9.3 % / 6.6 % / 4.7 % (order 1/2), and the peak radial tension
+(1 - 2 nu)/3 p0 at r = a is reached only as dx -> 0 (0.124 p0 at 128^2 instead of 0.133).
 
 """
 
@@ -389,11 +397,15 @@ def default_depths(body: Body, a: float) -> np.ndarray:
 
 def contact_stresses(case: ContactCase, result: ContactResult, *, body: int = 2,
                      depths=None, mu: float = 0.0, direction: float = 0.0,
-                     interface: str = "bonded", pad: int = 4) -> StressField:
+                     interface: str = "bonded", pad: int = 4,
+                     Q: float | None = None) -> StressField:
     """Stress field in ``body`` (1 or 2) from an FFT solution kept with its fields.
 
     ``mu`` > 0 adds full sliding friction ``q = mu p`` acting on the body in the direction
     ``direction`` [rad] from x (Coulomb, no normal-tangential coupling in the pressure).
+    ``Q`` [N] (``0 <= Q < mu W``) instead applies the partial-slip traction of
+    :func:`coathertz.fft.partial_slip.solve_partial_slip` (homogeneous bodies only; Goodman's
+    approximation).
     """
     if body not in (1, 2):
         raise CoatHertzError(f"body must be 1 or 2, got {body!r}")
@@ -412,10 +424,33 @@ def contact_stresses(case: ContactCase, result: ContactResult, *, body: int = 2,
         raise CoatHertzError(
             f"body{body}: depths must be in [0, h = {b.coating.h:g}] m on a rigid substrate")
     q = mu * p if mu > 0 else None
+    if Q is not None:
+        q = _partial_slip_traction(case, grid, p, Q, mu, direction)
     sig = stresses_surface(grid, z, frf, p=p,
                            qx=None if q is None else np.cos(direction) * q,
                            qy=None if q is None else np.sin(direction) * q, pad=pad)
     meta = {"method": "fft", "body": body, "mu": mu, "direction": direction,
             "interface": interface, "pad": pad, "grid": grid.describe(),
-            "coupling": "none (pressure from the frictionless normal solution)"}
+            "coupling": "none (pressure from the frictionless normal solution)",
+            "Q": Q, "traction": "sliding" if Q is None else "partial slip"}
     return StressField(x, y, z, sig, meta)
+
+
+def _partial_slip_traction(case: ContactCase, grid: Grid, p: np.ndarray, Q: float, mu: float,
+                           direction: float) -> np.ndarray:
+    """Cattaneo--Mindlin shear traction on the cell pressure (homogeneous bodies only)."""
+    from coathertz.fft.partial_slip import solve_partial_slip
+
+    if Q >= mu * case.W:  # the case's load (the cell sum differs by the solver's tolerance)
+        raise CoatHertzError(
+            f"tangential load Q = {Q:g} N >= mu W = {mu * case.W:g} N: the contact slides "
+            "(full sliding, q = mu p; partial slip needs Q < mu W)")
+    bodies = []
+    for i, b in enumerate((case.body1, case.body2), start=1):
+        if b.coating is not None or b.is_stacked:
+            raise CoatHertzError(
+                f"body{i}: partial slip (Q) needs homogeneous bodies; a coated body's tangential "
+                "compliance is not modelled yet")
+        if not b.material.is_rigid:
+            bodies.append((b.material.G, b.material.nu))
+    return solve_partial_slip(p, grid, bodies, Q, mu, direction).q

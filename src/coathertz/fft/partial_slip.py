@@ -1,0 +1,121 @@
+"""Partial slip under a tangential load ``Q < mu W`` on the FFT grid (Cattaneo--Mindlin).
+
+The pressure ``p`` is the frictionless normal solution (Goodman's approximation: the
+normal--tangential coupling through elastic dissimilarity, ``(1 - 2 nu1)/G1 - (1 - 2 nu2)/G2``,
+is neglected). The shear traction ``q`` acts along the load direction ``e`` only; in the stick
+zone the relative tangential displacement along ``e`` is a rigid shift ``delta``, in the slip
+zone ``|q| = mu p``. Surface compliance of a homogeneous half-space to a shear traction
+(Cerruti, in Fourier form, Johnson 1985 sec. 3.2)::
+
+    u_e(k) = sum_i (1 / G_i) (1 - nu_i (k . e)^2 / |k|^2) q(k) / |k|
+
+(both bodies add; a rigid body adds nothing). The cell tractions are constant per cell
+(transform ``sinc sinc``), zero padded to ``pad`` domain widths. The problem on the contact
+cells is solved with a dense compliance matrix and an active set: stick cells solve
+``C q = delta`` with ``sum q dA = Q``; cells with ``|q| > mu p`` go to slip at ``mu p``, slip
+cells whose slip does not oppose ``q`` go back to stick, until the sets stop changing.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import fft as sfft
+
+from coathertz.errors import CoatHertzError
+from coathertz.fft.grid import Grid
+
+
+@dataclass(frozen=True)
+class PartialSlip:
+    """Tangential traction ``q`` [Pa] along the load direction, stick mask, shift ``delta`` [m]."""
+
+    q: np.ndarray
+    stick: np.ndarray
+    delta: float
+    iterations: int
+
+
+def _compliance(grid: Grid, bodies, direction: float, pad: int):
+    ny, nx = grid.shape
+    Ny, Nx = pad * ny, pad * nx
+    kx = 2 * np.pi * sfft.fftfreq(Nx, grid.dx)[None, :]
+    ky = 2 * np.pi * sfft.fftfreq(Ny, grid.dy)[:, None]
+    w = np.hypot(kx, ky)
+    safe = np.where(w > 0, w, 1.0)
+    ke = (np.cos(direction) * kx + np.sin(direction) * ky) / safe
+    K = np.zeros_like(w)
+    for G, nu in bodies:
+        K = K + (1 - nu * ke**2) / G
+    K = np.where(w > 0, K / safe, 0.0)
+    K = K * np.sinc(kx * grid.dx / (2 * np.pi)) * np.sinc(ky * grid.dy / (2 * np.pi))
+    return K, (Ny, Nx)
+
+
+def solve_partial_slip(p: np.ndarray, grid: Grid, bodies, Q: float, mu: float,
+                       direction: float = 0.0, pad: int = 2, max_iter: int = 200) -> PartialSlip:
+    """Cattaneo--Mindlin partial slip on the cell pressure ``p`` [Pa].
+
+    Parameters
+    ----------
+    bodies
+        ``(G, nu)`` of each deformable body (shear modulus [Pa], Poisson's ratio).
+    Q
+        Tangential load [N], ``0 <= Q < mu W``.
+    mu
+        Coulomb friction coefficient, ``> 0``.
+    direction
+        Load direction [rad] from x.
+    """
+    if not (np.isfinite(mu) and mu > 0):
+        raise CoatHertzError(f"friction coefficient mu must be > 0 for partial slip, got {mu!r}")
+    if not (np.isfinite(Q) and Q >= 0):
+        raise CoatHertzError(f"tangential load Q must be >= 0 [N], got {Q!r}")
+    dA = grid.dx * grid.dy
+    W = float(np.sum(p)) * dA
+    if Q >= mu * W:
+        raise CoatHertzError(
+            f"tangential load Q = {Q:g} N >= mu W = {mu * W:g} N: the contact slides "
+            "(full sliding, q = mu p; partial slip needs Q < mu W)")
+    K, (Ny, Nx) = _compliance(grid, bodies, direction, pad)
+    idx = np.flatnonzero(p.ravel() > 0)
+    n = idx.size
+    ny, nx = grid.shape
+    C = np.empty((n, n))
+    e = np.zeros((Ny, Nx))
+    for j, f in enumerate(idx):  # columns of the dense compliance of the contact cells
+        e[:] = 0.0
+        e[f // nx, f % nx] = 1.0
+        u = np.real(sfft.ifft2(sfft.fft2(e) * K))[:ny, :nx]
+        C[:, j] = u.ravel()[idx]
+    bound = mu * p.ravel()[idx]
+    stick = np.ones(n, dtype=bool)
+    q = np.zeros(n)
+    delta = 0.0
+    for it in range(1, max_iter + 1):
+        s = np.flatnonzero(stick)
+        sl = np.flatnonzero(~stick)
+        q[sl] = bound[sl] * np.where(q[sl] < 0, -1.0, 1.0)  # slip: |q| = mu p, sign kept
+        m = s.size
+        A = np.zeros((m + 1, m + 1))
+        A[:m, :m] = C[np.ix_(s, s)]
+        A[:m, m] = -1.0
+        A[m, :m] = dA
+        rhs = np.concatenate([-C[np.ix_(s, sl)] @ q[sl], [Q - dA * q[sl].sum()]])
+        x = np.linalg.solve(A, rhs)
+        q[s], delta = x[:m], x[m]
+        slip = C @ q - delta  # relative displacement minus the rigid shift
+        over = stick & (np.abs(q) > bound)
+        back = ~stick & (slip * q > 0)  # slip running with the traction: not admissible
+        if not over.any() and not back.any():
+            iterations = it
+            break
+        stick = (stick & ~over) | back
+    else:
+        raise CoatHertzError(f"partial slip: active set did not settle in {max_iter} iterations")
+    qf = np.zeros(ny * nx)
+    qf[idx] = q
+    st = np.zeros(ny * nx, dtype=bool)
+    st[idx] = stick
+    return PartialSlip(qf.reshape(ny, nx), st.reshape(ny, nx), float(delta), iterations)
