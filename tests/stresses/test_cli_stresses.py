@@ -105,3 +105,11 @@ def test_partial_slip_bad_input_one_line(capsys, extra, text):
     assert main(["stresses", *BASE, "--grid", "32", *extra]) == 2
     err = capsys.readouterr().err.strip()
     assert text in err and len(err.splitlines()) == 1, err
+
+
+def test_partial_slip_too_many_cells_is_refused(capsys):
+    """The dense partial-slip solve is bounded (MAX_CONTACT_CELLS): at the default 128^2 grid a
+    circular contact has about 8000 cells, refused in one line that names a grid that fits."""
+    assert main(["stresses", *BASE, "--mu", "0.3", "--Q", "1 N"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "use a coarser grid (--grid" in err and len(err.splitlines()) == 1, err

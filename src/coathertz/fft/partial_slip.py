@@ -26,6 +26,10 @@ from scipy import fft as sfft
 from coathertz.errors import CoatHertzError
 from coathertz.fft.grid import Grid
 
+#: Largest number of contact cells of the dense solve (its matrix: 69 MiB; an LU of it about a
+#: second): about a 64 x 64 FFT grid around a circular contact (2060 cells).
+MAX_CONTACT_CELLS = 3000
+
 
 @dataclass(frozen=True)
 class PartialSlip:
@@ -78,9 +82,15 @@ def solve_partial_slip(p: np.ndarray, grid: Grid, bodies, Q: float, mu: float,
         raise CoatHertzError(
             f"tangential load Q = {Q:g} N >= mu W = {mu * W:g} N: the contact slides "
             "(full sliding, q = mu p; partial slip needs Q < mu W)")
-    K, (Ny, Nx) = _compliance(grid, bodies, direction, pad)
     idx = np.flatnonzero(p.ravel() > 0)
     n = idx.size
+    if n > MAX_CONTACT_CELLS:
+        raise CoatHertzError(
+            f"partial slip: {n} contact cells; the dense active-set solve takes at most "
+            f"{MAX_CONTACT_CELLS} ({MAX_CONTACT_CELLS**2 * 8 / 2**20:.0f} MiB): use a coarser grid "
+            f"(--grid {int(grid.shape[1] * (MAX_CONTACT_CELLS / n) ** 0.5) // 8 * 8} or less for this "
+            "contact)")
+    K, (Ny, Nx) = _compliance(grid, bodies, direction, pad)
     ny, nx = grid.shape
     C = np.empty((n, n))
     e = np.zeros((Ny, Nx))
