@@ -54,6 +54,10 @@ def test_cli_flags_equal_case_file(tmp_path, capsys):
     ([{**LAYERS[0], "nu": 0.6}], "[body2] layer 1: Poisson's ratio nu must satisfy"),
     ([{**LAYERS[0], "interface": "glued"}], "[body2] layer 1: interface must be one of"),
     ([{"E": "1 GPa", "nu": 0.3}], "[body2] layer 1: missing h"),
+    ([LAYERS[0], LAYERS[1], {**LAYERS[2], "h": "-0.3 um"}], "[body2] layer 3 thickness h"),
+    ([LAYERS[0], {**LAYERS[1], "interface": "sliding"}], "[body2] layer 2: interface must be one of"),
+    ([{**LAYERS[0], "E": "0 GPa"}], "[body2] layer 1 E must satisfy 0 < E"),
+    ([{**LAYERS[0], "E": "-150 GPa"}], "[body2] layer 1 E must satisfy 0 < E"),
 ])
 def test_bad_case_file_layer_is_one_line(layers, text):
     with pytest.raises(CoatHertzError) as exc:
@@ -71,6 +75,7 @@ def test_coating_and_layers_refused():
 
 @pytest.mark.parametrize("bad,text", [
     ("300 GPa,0.22,-1.5 um", "--coating: layer 2 thickness h must satisfy 0 < h < inf"),
+    ("300 GPa,0.22,0 um", "--coating: layer 2 thickness h must satisfy 0 < h < inf"),
     ("300 GPa,0.7,1.5 um", "--coating: layer 2 Poisson's ratio nu must satisfy"),
     ("300 GPa,0.22,1.5 um,glued", "--coating: layer 2: interface must be one of"),
 ])
@@ -80,3 +85,13 @@ def test_bad_cli_layer_exits_2(bad, text, capsys):
     assert main(argv) == 2
     err = capsys.readouterr().err.strip()
     assert text in err and "\n" not in err and "Traceback" not in err, err
+
+
+def test_bad_layer_on_body1_names_body1():
+    d = doc(LAYERS)
+    d["body1"] = {"material": {"E": "210 GPa", "nu": 0.3}, "R": "10 mm",
+                  "layers": [{**LAYERS[0], "nu": 0.55}]}
+    with pytest.raises(CoatHertzError) as exc:
+        case_from_dict(d)
+    msg = str(exc.value)
+    assert "[body1] layer 1: Poisson's ratio nu must satisfy" in msg and "\n" not in msg, msg
