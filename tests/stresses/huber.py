@@ -39,3 +39,14 @@ def huber(r, z, a: float, nu: float):
     trz = -np.divide(r * z * z, den, out=np.zeros_like(u), where=den > 0) * (
         a * a * su / (a * a + u))
     return sr, st, sz, trz
+
+
+def hertz_on_grid(n: int, width: float, a: float = 1.0):
+    """Hertz's pressure ``sqrt(1 - (r/a)^2)`` (p0 = 1) at the cell centres of an ``n x n`` FFT grid
+    spanning ``width``: ``(grid, X, Y, R, p)``."""
+    from coathertz.fft.grid import Grid
+
+    g = Grid(n, n, width / n, width / n)
+    X, Y = np.meshgrid(g.x, g.y)
+    R = np.hypot(X, Y)
+    return g, X, Y, R, np.sqrt(np.clip(1 - (R / a) ** 2, 0, None))

@@ -6,8 +6,9 @@ import numpy as np
 import pytest
 
 from coathertz.errors import CoatHertzError
-from coathertz.fft.grid import Grid
 from coathertz.fft.partial_slip import solve_partial_slip
+
+from .huber import hertz_on_grid
 
 A, NU, MU, G = 1.0, 0.3, 0.3, 1.0
 N = 64
@@ -15,10 +16,7 @@ N = 64
 
 @pytest.fixture(scope="module")
 def hertz():
-    g = Grid(N, N, 3.0 * A / N, 3.0 * A / N)
-    X, Y = np.meshgrid(g.x, g.y)
-    R = np.hypot(X, Y)
-    p = np.sqrt(np.clip(1 - (R / A) ** 2, 0, None))  # p0 = 1
+    g, X, _, R, p = hertz_on_grid(N, 3.0 * A, A)  # p0 = 1
     return g, X, R, p, float(p.sum()) * g.dx * g.dy
 
 

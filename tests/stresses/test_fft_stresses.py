@@ -15,7 +15,7 @@ from coathertz.fft.stresses import (
 )
 from coathertz.materials import RIGID, Material
 
-from .huber import huber
+from .huber import hertz_on_grid, huber
 
 NU = 0.3
 A = 1.0
@@ -24,11 +24,7 @@ N = 128
 
 @pytest.fixture(scope="module")
 def hertz():
-    g = Grid(N, N, 4.0 * A / N, 4.0 * A / N)
-    X, Y = np.meshgrid(g.x, g.y)
-    R = np.hypot(X, Y)
-    p = np.sqrt(np.clip(1 - (R / A) ** 2, 0, None))  # p0 = 1
-    return g, X, Y, R, p
+    return hertz_on_grid(N, 4.0 * A, A)  # p0 = 1
 
 
 def _reference(X, Y, R, z):
