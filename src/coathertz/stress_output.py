@@ -11,10 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from coathertz.stress_summary import first_principal, von_mises
-
-#: The stress components in the order of a field's component axis.
-COMPONENTS = ("xx", "yy", "zz", "yz", "xz", "xy")
+from coathertz.stress_summary import COMPONENTS, first_principal, von_mises
 
 
 def slice_figure(x, y, z, sigma: np.ndarray, *, a_x: float, a_y: float, h: float | None,

@@ -11,6 +11,9 @@ import numpy as np
 
 from coathertz.materials import Body
 
+#: The stress components in the order of a field's component axis (Voigt order).
+COMPONENTS = ("xx", "yy", "zz", "yz", "xz", "xy")
+
 
 def von_mises(sig: np.ndarray) -> np.ndarray:
     """Von Mises stress of a ``(..., 6, ...)`` field with the components on axis 1."""

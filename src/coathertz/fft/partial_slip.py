@@ -92,13 +92,11 @@ def solve_partial_slip(p: np.ndarray, grid: Grid, bodies, Q: float, mu: float,
             "contact)")
     K, (Ny, Nx) = _compliance(grid, bodies, direction, pad)
     ny, nx = grid.shape
-    C = np.empty((n, n))
-    e = np.zeros((Ny, Nx))
-    for j, f in enumerate(idx):  # columns of the dense compliance of the contact cells
-        e[:] = 0.0
-        e[f // nx, f % nx] = 1.0
-        u = np.real(sfft.ifft2(sfft.fft2(e) * K))[:ny, :nx]
-        C[:, j] = u.ravel()[idx]
+    # the compliance is a convolution: one inverse transform gives the response at every offset,
+    # and the dense matrix of the contact cells is that response read at their offsets
+    g = np.real(sfft.ifft2(K))
+    iy, ix = np.divmod(idx, nx)
+    C = g[(iy[:, None] - iy[None, :]) % Ny, (ix[:, None] - ix[None, :]) % Nx]
     bound = mu * p.ravel()[idx]
     stick = np.ones(n, dtype=bool)
     q = np.zeros(n)
