@@ -149,10 +149,20 @@ def _after_docstring(script: Path) -> int:
     return ast.parse(script.read_text()).body[0].end_lineno + 2
 
 
+#: Pages whose text comes from the code (:func:`_fill`): read again on every build, or an
+#: incremental build would keep a stale list (a module added since the last build missing).
+GENERATED_PAGES = ("internals", "studies", "examples")
+
+
+def _generated_pages(app, env, added, changed, removed) -> list[str]:
+    return [d for d in GENERATED_PAGES if d not in added | changed | removed]
+
+
 def setup(app):
     from sphinx.ext.napoleon import docstring as napoleon_docstring
 
     napoleon_docstring.GoogleDocstring._parse_attribute_docstring = _attribute_as_written
     app.connect("source-read", _fill)
+    app.connect("env-get-outdated", _generated_pages)
     app.connect("autodoc-process-docstring", _plain_docstrings, priority=400)
     return {"parallel_read_safe": True}
