@@ -178,7 +178,7 @@ def plot(result: C.StudyResult, outdir) -> list:
     paths: list = []
     el = [r for r in recs if r["config"] == "elastic" and math.isclose(r["nu_c"], 0.3)]
     if el:
-        paths += _elastic_error_maps(el, outdir)
+        paths += _elastic_error_maps(el, outdir, result.uncertainty)
     other = [r for r in recs if r["config"] in ("rigid", "ellipse")]
     if other:
         fig, axes = C.figure(2, 1, width=5.0, height=3.6)
@@ -206,7 +206,7 @@ RULE_TITLES = {"paper": "paper's rule (eqs 17-19, Appendix A)", "refit": "refitt
 QUANTITY_LABELS = {"a": "a", "p": "$p_0$", "delta": r"$\delta$"}
 
 
-def _elastic_error_maps(el: list[dict], outdir) -> list:
+def _elastic_error_maps(el: list[dict], outdir, uncertainty: dict | None = None) -> list:
     """``refit_elastic``: the error of each rule over the (H, E) cells of the elastic, nu = 0.3
     cases, one row per rule with its own symmetric-log colour scale (the paper's errors reach
     tens of percent, the refit's hundredths), each cell's value written in it, cells without a
@@ -255,8 +255,12 @@ def _elastic_error_maps(el: list[dict], outdir) -> list:
     if missing:
         fig.legend(handles=[Patch(facecolor="0.85", edgecolor="0.6", hatch="///", label="no case")],
                    loc="lower left", fontsize=7, frameon=False)
-    n_cases = len({r["case"] for r in el})
-    fig.suptitle(f"Refit study, elastic substrate, nu_c = nu_s = 0.3 ({n_cases} held-out cases): error of "
-                 f"the paper's and the refitted alpha rule against {', '.join(refs).upper()}", fontsize=9)
+    cases = {r["case"] for r in el}
+    unc = [v for c in cases for v in (uncertainty or {}).get(c, {}).values() if math.isfinite(v)]
+    unc_text = (f"; reference uncertainty <= {max(unc):.1g} %" if unc
+                else "; reference uncertainty not estimated")
+    fig.suptitle(f"Refit study, elastic substrate, nu_c = nu_s = 0.3 ({len(cases)} held-out cases): error of "
+                 f"the paper's and the refitted alpha rule against {', '.join(refs).upper()}{unc_text}",
+                 fontsize=9)
     fig.set_layout_engine("constrained")  # the colour bars beside their rows; laid out when drawn
     return C.save(fig, outdir, "refit_elastic")
