@@ -1,15 +1,13 @@
 """Claims against the arbiter, with the numerical uncertainty that decides inconclusive verdicts.
 
-Every claim of a study is computed from :attr:`~coathertz.verification.study.StudyResult.errors` (the
-closed form against
-each case's reference: the top-ranked method that solved it). Its uncertainty is, in this order:
-the reference re-solved at refined settings on the cases a study marks ``refine`` (a convergence
-estimate of the reference itself, ``<method>-refined``), over the claim's own cases, else over the
-study's refined cases; else the spread between the methods that solved the same cases
-(:attr:`~coathertz.verification.study.StudyResult.uncertainty`, the largest |cross-check difference|:
-conservative, since it
-measures the less accurate method's error too), over the claim's cases, else the study's; else
-not estimated. The detail says which.
+Every claim of a study is computed from :attr:`~coathertz.verification.study.StudyResult.errors`
+(the closed form against each case's reference: the top-ranked method that solved it). Its
+uncertainty is, in this order: the reference re-solved at refined settings on the cases a study
+marks ``refine`` (a convergence estimate of the reference itself, ``<method>-refined``), over the
+claim's own cases, else over the study's refined cases; else the spread between the methods that
+solved the same cases (:attr:`~coathertz.verification.study.StudyResult.uncertainty`, the largest
+|cross-check difference|: conservative, since it measures the less accurate method's error too),
+over the claim's cases, else the study's; else not estimated. The detail says which.
 """
 
 from __future__ import annotations

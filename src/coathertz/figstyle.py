@@ -25,10 +25,9 @@ __all__ = ["DEFAULT_FORMATS", "active_formats", "after_renders", "colour", "figu
            "method_style", "save", "saving", "series"]
 
 
-#: The formats :func:`save` writes unless a :func:`~coathertz.figstyle.saving` block says otherwise. PNG is
-#: what the
-#: report embeds; SVG (vector copies for papers) is opt-in (``coathertz verify --svg``): it costs as
-#: much again as the PNG.
+#: The formats :func:`save` writes unless a :func:`~coathertz.figstyle.saving` block says
+#: otherwise. PNG is what the report embeds; SVG (vector copies for papers) is opt-in
+#: (``coathertz verify --svg``): it costs as much again as the PNG.
 DEFAULT_FORMATS: tuple[str, ...] = ("png",)
 
 
@@ -116,8 +115,8 @@ def saving(formats: Sequence[str] = DEFAULT_FORMATS, jobs: int | None = None):
 
 def after_renders(fn) -> None:
     """Call ``fn()`` once every figure saved so far is on disk: at the end of the enclosing
-    :func:`~coathertz.figstyle.saving` block if all its renders succeeded (never otherwise), or now outside
-    one."""
+    :func:`~coathertz.figstyle.saving` block if all its renders succeeded (never otherwise), or
+    now outside one."""
     if _SAVING is None:
         fn()
     else:
@@ -149,11 +148,10 @@ def _write(fig, paths: Sequence[Path]) -> None:
 
 def save(fig, outdir: str | Path, name: str) -> list[Path]:
     """Save ``fig`` as ``outdir/name.png`` (150 dpi), and ``.svg`` where a
-    :func:`~coathertz.figstyle.saving` block
-    asks for it; close it. Byte-for-byte reproducible: no date in the SVG, fixed SVG ids (a rerun
-    with equal numbers leaves a published report unchanged). Inside a :func:`~coathertz.figstyle.saving`
-    block with
-    more than one job the files are complete only when the block ends."""
+    :func:`~coathertz.figstyle.saving` block asks for it; close it. Byte-for-byte reproducible: no
+    date in the SVG, fixed SVG ids (a rerun with equal numbers leaves a published report
+    unchanged). Inside a :func:`~coathertz.figstyle.saving` block with more than one job the files
+    are complete only when the block ends."""
     import matplotlib.pyplot as plt
 
     outdir = Path(outdir)

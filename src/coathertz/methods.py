@@ -133,9 +133,8 @@ OPTIONAL_HOOKS: tuple[tuple[str, Any], ...] = (
 
 def validate(cls: Any, name: str) -> Any:
     """``cls`` if it meets the method contract (:data:`REQUIRED_MEMBERS`, :data:`OPTIONAL_HOOKS`,
-    ``cost`` in :data:`COSTS`); else :class:`~coathertz.errors.CoatHertzError` naming the method and every
-    member
-    that is missing or malformed."""
+    ``cost`` in :data:`COSTS`); else :class:`~coathertz.errors.CoatHertzError` naming the method and
+    every member that is missing or malformed."""
     problems = []
     for member, kind in (*REQUIRED_MEMBERS, *OPTIONAL_HOOKS):
         required = (member, kind) in REQUIRED_MEMBERS
