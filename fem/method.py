@@ -146,9 +146,9 @@ class FEMMethod:
     max_memory_gb
         Memory budget of one solve [GiB] (default: half the physical memory, at most 8). The
         unknowns and memory are estimated from the mesh size before anything is built
-        (:func:`estimate_memory`); a larger estimate raises :class:`~coathertz.errors.CoatHertzError`. Does
-        not
-        change any number, so it is not part of :meth:`settings`.
+        (:func:`estimate_memory`); a larger estimate raises
+        :class:`~coathertz.errors.CoatHertzError`. Does not change any number, so it is not part of
+        :meth:`settings`.
     """
 
     # method metadata (coathertz.methods)

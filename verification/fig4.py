@@ -19,8 +19,8 @@ why the inverted alpha_a is large and scattered there; the claims say so.
 
 E = 1 (coating = substrate) is left out: eq (17) then gives Es* for every alpha.
 
-Cases: those of :mod:`~coathertz.verification.fig3` (shared through the result store, so nothing is solved
-twice).
+Cases: those of :mod:`~coathertz.verification.fig3` (shared through the result store, so nothing
+is solved twice).
 """
 
 from __future__ import annotations

@@ -2,10 +2,9 @@ r"""Figure 5 and Appendix A: the representative alpha curves at E = 1/3 and E = 
 
 Appendix A fits :math:`\alpha_a, \alpha_\delta, \alpha_p` at the modulus ratios E = 1/3 and 3
 (elastic substrate, :math:`\nu_c = \nu_s = 0.3`) as piecewise polynomials in H. We compare them
-with the alpha inverted from our numerical results (:mod:`~coathertz.verification.fig4`) at the same E,
-report the
-jumps of the printed pieces at their breakpoints (the paper says they need not join), and the
-error in the predicted bars that the difference causes (what matters to a user).
+with the alpha inverted from our numerical results (:mod:`~coathertz.verification.fig4`) at the
+same E, report the jumps of the printed pieces at their breakpoints (the paper says they need not
+join), and the error in the predicted bars that the difference causes (what matters to a user).
 
 Paper's claims: the curves represent the numerical alpha at E = 1/3 and 3; the pieces'
 mismatch at H = 0.01 "hardly changes the predictions".

@@ -24,8 +24,7 @@ load balance are below ``rtol`` times the path's largest load. History is commit
 Increments: every target of the load path is reached by sub-increments; a failed Newton loop
 (``max_newton`` iterations, or a diverging residual) halves the sub-increment, a converged one
 lets it grow again (x 1.5); after ``max_cutbacks`` consecutive halvings
-:class:`~coathertz.errors.ConvergenceError`
-is raised.
+:class:`~coathertz.errors.ConvergenceError` is raised.
 Load ``W = 0`` (full unloading under load control) is solved without contact: the residual
 state.
 """

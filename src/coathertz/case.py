@@ -149,10 +149,10 @@ class ContactCase:
         """The coating/substrate interface a method models for this case.
 
         ``frictionless`` when a coated body's coating says so
-        (:attr:`~coathertz.materials.Coating.interface`) or the
-        method's own ``setting`` asks for it (a study's variant solving bonded cases as
-        frictionless); else ``bonded``. A frictionless coating in the case is therefore never
-        solved as a bonded one, whatever the method's default.
+        (:attr:`~coathertz.materials.Coating.interface`) or the method's own ``setting`` asks for
+        it (a study's variant solving bonded cases as frictionless); else ``bonded``. A
+        frictionless coating in the case is therefore never solved as a bonded one, whatever the
+        method's default.
         """
         if setting not in INTERFACES:
             raise CoatHertzError(f"interface must be one of {list(INTERFACES)}, got {setting!r}")

@@ -1,9 +1,8 @@
 """Exceptions and warnings shared by every part of coathertz.
 
-Every error a user can cause is a :class:`~coathertz.errors.CoatHertzError` (the CLI prints its message and
-exits with status 2); :class:`~coathertz.errors.ConvergenceError` and :class:`~coathertz.errors.StoreError`
-are the other two
-kinds the CLI reports without a traceback.
+Every error a user can cause is a :class:`~coathertz.errors.CoatHertzError` (the CLI prints its
+message and exits with status 2); :class:`~coathertz.errors.ConvergenceError` and
+:class:`~coathertz.errors.StoreError` are the other two kinds the CLI reports without a traceback.
 """
 
 from __future__ import annotations

@@ -167,11 +167,10 @@ def _body_compliance(body: Body, q: str, alpha: float, H: float) -> tuple[float,
 
 
 def refuse_frictionless(case: ContactCase, interface: str = "bonded") -> None:
-    """Raise :class:`~coathertz.errors.CoatHertzError` when ``case`` (or the ``interface`` asked for) has a
-    coating
-    resting on its substrate without friction: eq (13) and every alpha curve, the paper's and
-    the refitted ones, are for a bonded layer, and the bonded answer differs from the exact
-    frictionless one by several per cent (E = 0.2, H = 0.3: delta -6.8 %, a -4.6 %, p0 +11.1 %)."""
+    """Raise :class:`~coathertz.errors.CoatHertzError` when ``case`` (or the ``interface`` asked
+    for) has a coating resting on its substrate without friction: eq (13) and every alpha curve,
+    the paper's and the refitted ones, are for a bonded layer, and the bonded answer differs from
+    the exact frictionless one by several per cent (E = 0.2, H = 0.3: delta -6.8 %, a -4.6 %, p0 +11.1 %)."""
     if case.is_coated and case.interface_for(interface) == "frictionless":
         raise CoatHertzError(
             "closed form: the extended Hertz theory (eqs 13-21) and the refitted alpha are for a "
@@ -199,9 +198,9 @@ def predict(
         comes from the Appendix A curves through ``rule`` (elastic substrate) or the
         rigid-substrate curves.
     rule
-        Alpha rule for elastic substrates; default eq (19) (:data:`~coathertz.closedform.alpha.PAPER_RULE`)
-        for circular
-        contacts and eq (21) (:data:`~coathertz.closedform.alpha.ELLIPTICAL_RULE`) for elliptical ones.
+        Alpha rule for elastic substrates; default eq (19)
+        (:data:`~coathertz.closedform.alpha.PAPER_RULE`) for circular contacts and eq (21)
+        (:data:`~coathertz.closedform.alpha.ELLIPTICAL_RULE`) for elliptical ones.
     warn
         Issue :class:`~coathertz.errors.FittedRangeWarning` outside the fitted ranges.
     """

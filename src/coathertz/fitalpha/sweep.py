@@ -240,8 +240,7 @@ def lobatto(n: int, lo: float, hi: float) -> np.ndarray:
 
 
 #: Box of the reduced elastic coordinates (log10 H, log10 E, s); s of
-#: :mod:`coathertz.closedform.refit.reduced`
-#: covers nu_c, nu_s in [0, 1/2].
+#: :mod:`coathertz.closedform.refit.reduced` covers nu_c, nu_s in [0, 1/2].
 REDUCED_BOX = {"log10_H": (-3.0, 1.0), "log10_E": (-1.0, 1.0), "s": (0.0, 1.0)}
 #: Box of the rigid substrate: (log10 H, nu_c) with nu_c in [0, 1/2] (incompressible included).
 RIGID_BOX = {"log10_H": (-3.0, 1.0), "nu_c": (0.0, 0.5)}
@@ -305,8 +304,7 @@ RING_RHO = 0.4
 
 def design_grid_ring(shape: tuple[int, int, int] = (33, 17, 17), which: str = "ring") -> list[Point]:
     """Chebyshev--Lobatto grid of :data:`~coathertz.closedform.refit.rule_format.RING_BOX` (rows of
-    set ``ring``: the pressure on the axis
-    and on the ring, :func:`axis_and_ring`)."""
+    set ``ring``: the pressure on the axis and on the ring, :func:`axis_and_ring`)."""
     from coathertz.closedform.refit.reduced import poisson_of
 
     pts = []

@@ -12,11 +12,11 @@ factor that vanishes in the Hertz limits:
     v(H) = \begin{cases} w(1 - w),\ w = H/(1 + H) & \text{elastic substrate} \\
                          1/(1 + H) & \text{rigid substrate} \end{cases}
 
-with :math:`C_q` a clamped tensor Chebyshev surface (:class:`~coathertz.closedform.refit.surface.Surface`) in
-the variables of the configuration (:mod:`coathertz.closedform.refit.model`: :math:`(\log_{10} H, \log_{10}
-E, s)`
-on an elastic substrate, :math:`(\log_{10} H, t(\nu_c))` on a rigid one), fitted by linear least
-squares to the residual :math:`\ln \bar q_\text{exact} - \ln \bar q_\alpha` of the one-alpha rule.
+with :math:`C_q` a clamped tensor Chebyshev surface
+(:class:`~coathertz.closedform.refit.surface.Surface`) in the variables of the configuration
+(:mod:`coathertz.closedform.refit.model`: :math:`(\log_{10} H, \log_{10} E, s)` on an elastic
+substrate, :math:`(\log_{10} H, t(\nu_c))` on a rigid one), fitted by linear least squares to
+the residual :math:`\ln \bar q_\text{exact} - \ln \bar q_\alpha` of the one-alpha rule.
 Limits: on an elastic substrate :math:`v \to 0` as H -> 0 (substrate Hertz) and H -> inf
 (coating Hertz); on a rigid substrate as H -> inf (coating Hertz); the thin-layer end H -> 0 is
 not a Hertz limit there and the correction is held at its H = 0.001 value.

@@ -171,9 +171,8 @@ class RefitRule:
         return form.log_bar(q, E, H, nu_c, nu_s, model) - one
 
     def corrected_bar(self, quantity: str, E, H, nu_c=0.3, nu_s=0.3, config: str = "elastic") -> np.ndarray:
-        """The corrected form's bars (:mod:`coathertz.closedform.refit.corrected`: eqs (17)-(18) times a
-        smooth
-        factor vanishing in the Hertz limits; rigid indenter, circular contact); ``config``
+        """The corrected form's bars (:mod:`coathertz.closedform.refit.corrected`: eqs (17)-(18)
+        times a smooth factor vanishing in the Hertz limits; rigid indenter, circular contact); ``config``
         ``elastic`` or ``rigid`` (then ``E`` and ``nu_s`` are ignored)."""
         form = self._corrected.get(config)  # type: ignore[attr-defined]
         if form is None:
