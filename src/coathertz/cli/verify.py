@@ -164,9 +164,12 @@ def run(args: argparse.Namespace) -> int:
         # one pool of worker processes for all the studies (started once, caches kept)
         pool = worker_pool(args.workers) if args.scheduler is None else contextlib.nullcontext()
         with pool, saving(("png", "svg") if args.svg else ("png",), 1 if args.scheduler else args.workers):
-            for i, mod in enumerate(mods):
+            # studies whose analysis solves in processes of its own (``RUN_EARLY``) first, so that
+            # the next studies' cases fill the workers it leaves idle; the report keeps the order
+            order = sorted(mods, key=lambda m: not getattr(m, "RUN_EARLY", False))
+            for i, mod in enumerate(order):
                 # the next study's cases start on the workers as this one's run out
-                nxt = mods[i + 1] if i + 1 < len(mods) and args.scheduler is None else None
+                nxt = order[i + 1] if i + 1 < len(order) and args.scheduler is None else None
                 r = run_study(mod, args.resolution, methods, store, {**opts, "ahead": _once(
                     lambda m=nxt: study_tasks(m, args.resolution, methods) if m is not None else [])})
                 results.append(r)
@@ -176,6 +179,7 @@ def run(args: argparse.Namespace) -> int:
                 with writing(figdir, "--out"):
                     figures[r.name] = plot_study(r, mod, figdir)
             t_studies = time.perf_counter()
+            results.sort(key=lambda r: [m.NAME for m in mods].index(r.name))
     except KeyboardInterrupt:
         print(f"coathertz verify: interrupted; {store.count()} results are in {store.path}; "
               "run the same command again to resume", file=sys.stderr)
