@@ -590,8 +590,11 @@ def _run_processes(chunks: list, workers: int, record: Callable,
                     futures[ex.submit(solve_chunk, *nxt)] = (nxt[0], nxt[1], time.perf_counter())
                 elif ahead:  # this call's chunks are all out: the next call's fill the free slots
                     if not started_ahead:
-                        later()  # type: ignore[misc]
                         started_ahead = True
+                        try:
+                            later()  # type: ignore[misc]
+                        except Exception:  # the next call plans again and reports it
+                            _AHEAD.queued.clear()
                     _AHEAD.top_up(ex, _POOL[1])  # type: ignore[index]
         clean = True
     finally:
