@@ -197,9 +197,12 @@ S_STEP = 2.0 ** 0.125
 def _radial_table(split: LayerSplit, S: float) -> CubicSpline:
     """``h^2 g(s)`` for ``s = r/h`` in ``[0, S]``: the remainder's radial Hankel transform
     ``(1/2 pi) int rho(t) t J0(s t) dt`` (composite Gauss--Legendre, 16 nodes per panel, two
-    panels per period of ``J0`` at ``s = S``), tabulated at 513 points (cubic spline). It depends on
-    the layer and ``S`` only, not on ``h`` or the grid, hence cached."""
-    tmax = 32.0 / min(split.c, 2.0)
+    panels per period of ``J0`` at ``s = S``, up to ``t = 16`` where ``rho ~ e^{-2t}`` is below
+    1e-13, or ``16 h/h_top`` for a stack whose top layer is ``h_top`` thick), tabulated at 513
+    points (cubic spline). It depends on the layer and ``S`` only, not on ``h`` or the grid,
+    hence cached."""
+    # rho decays like exp(-2 t) for one layer; a stack's like exp(-2 t h_top/h) (its top layer)
+    tmax = 32.0 / min(split.c, 2.0) / getattr(split.layer, "top_fraction", 1.0)
     xg, wg = np.polynomial.legendre.leggauss(16)
     panels = int(max(8, tmax * S / (4 * np.pi)))
     edges = np.linspace(0.0, tmax, panels + 1)
