@@ -98,6 +98,18 @@ BYTES_PER_DOF = {"displacement": 10_000, "mixed": 20_000}
 BASE_BYTES = 300e6
 
 
+def refuse_plastic_stack(case: ContactCase, what: str) -> None:
+    """Raise one clear line if ``case`` has a layer stack: the elastic-plastic FE (``what``) models
+    one coating at most."""
+    for name in ("body1", "body2"):
+        body = getattr(case, name)
+        if body.is_stacked:
+            raise CoatHertzError(
+                f"{what}: {name} has a stack of {len(body.layers)} layers; plasticity is modelled for"
+                " one coating at most (layers: not supported): solve the stack elastically with fem,"
+                " axisym or fft")
+
+
 def default_max_memory_gb() -> float:
     """Half the physical memory, at most 8 GiB: the default memory budget of one FE solve."""
     try:
