@@ -23,7 +23,7 @@ region of the mesh (:func:`coathertz.fem.mesh.build_mesh` puts element edges on 
 each interface bonded or frictionless as the layer says, on an elastic or rigid substrate. A
 one-layer stack is the coating case, number for number. Checked against the exact method
 (axisym) in ``tests/multilayer/test_fe_stack.py``. Stacks are elastic only: the plastic path
-(:mod:`coathertz.fem.plastic`) and the stress report (``stresses=True``) refuse them.
+(:mod:`coathertz.fem.plastic`) refuses them.
 """
 
 from __future__ import annotations
@@ -268,9 +268,6 @@ class FEMMethod:
             return None
         name = "body1" if case.body1.is_stacked else "body2"
         n = len(getattr(case, name).layers)
-        if self.stresses:
-            return (f"fem: {name} has a stack of {n} layers; the stress report (stresses=True) covers one"
-                    " coating only: solve the stack with stresses=False")
         if self.interface != "bonded":
             return (f"fem: {name} has a stack of {n} layers, whose interfaces are set per layer"
                     f" (Layer.interface); the method's interface={self.interface!r} applies to one coating"
