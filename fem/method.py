@@ -310,12 +310,14 @@ class FEMMethod:
         level = f"mesh={self.mesh!r}" + "".join(f", {k}={v!r}" for k, v in self.overrides.items())
         s_e, _ = edge_band(a_ref, h, self.spec)
         if h > 0 and s_e < a_ref / self.spec.n_a and size.n_r > 4 * self.spec.n_a * self.spec.r_fine:
+            what = "the top layer of the stack" if len(layers) > 1 else "the coating"
             cause = (
-                f"the coating is very thin, H = h/a = {h / a_ref:.3g} (h = {h:.4g} m, a ~ {a_ref:.4g} m): the"
+                f"{what} is very thin, H = h/a = {h / a_ref:.3g} (h = {h:.4g} m, a ~ {a_ref:.4g} m): the"
                 f" contact edge is resolved with elements of size {self.spec.edge:g} h / n_a = {s_e:.3g} m"
             )
+            without = "the stack without that layer" if len(layers) > 1 else "the uncoated substrate"
             hint = (
-                "use the fft method, or, for H < 1e-3, the uncoated substrate (the coating changes delta, a"
+                f"use the fft method, or, for H < 1e-3, {without} ({what} changes delta, a"
                 " and p0 by O(H)); a coarser mesh (mesh='coarse' or a smaller n_a) or a larger"
                 " max_memory_gb if the machine has the memory"
             )

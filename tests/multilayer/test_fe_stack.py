@@ -328,3 +328,21 @@ def test_multilayer_study_runs_the_fe(tmp_path):
         for q in QS:
             e = abs(fe_row[q] / ref[q] - 1.0)
             assert e <= BOUND[q], f"{c}, {q}: FE vs axisym {e:.2e}"
+
+
+def test_memory_guard_counts_each_layer():
+    """The estimate has Q1 pressure unknowns for each mixed (nu >= 0.45) layer only, and a stack
+    with a very thin top layer is refused before anything is built, in one line naming it."""
+    c = CASES["3L rigid incompressible mid"]()
+    m = FEMMethod(mesh="coarse")
+    a = 1.2 * A0
+    size, dofs, _ = m.check_size(a, c.body2, R)
+    assert size.n_t_layers and sum(size.n_t_layers) == size.n_t  # a rigid base: the stack is the mesh
+    assert dofs == size.displacement_dofs + (size.n_r + 1) * (size.n_t_layers[1] + 1)
+    lm = build_mesh(a, tuple(L.h for L in c.body2.layers), MESH_LEVELS["coarse"], rigid_base=True)
+    assert (size.n_r, size.n_t) == (len(np.unique(lm.mesh.p[0])) - 1, len(np.unique(lm.mesh.p[1])) - 1)
+    layers = (Layer(Material(450e9, 0.25), 1e-6 * A0), Layer(MID, 0.2 * A0))
+    thin = ContactCase(Body.rigid_sphere(R), Body(STEEL, layers=layers), W)
+    with pytest.raises(CoatHertzError, match="the top layer of the stack is very thin") as exc:
+        FEMMethod(max_memory_gb=1.0).solve(thin)
+    assert "\n" not in str(exc.value)
