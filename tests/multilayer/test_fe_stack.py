@@ -346,3 +346,13 @@ def test_memory_guard_counts_each_layer():
     with pytest.raises(CoatHertzError, match="the top layer of the stack is very thin") as exc:
         FEMMethod(max_memory_gb=1.0).solve(thin)
     assert "\n" not in str(exc.value)
+
+
+def test_cli_fem_solves_a_stack_example(capsys):
+    """``coathertz fem`` on a stack: delta, a, p0 and both sides of every interface."""
+    from coathertz.cli import main
+
+    assert main(["fem", "example:tin_ti_on_steel", "--mesh", "coarse"]) == 0
+    out = capsys.readouterr().out
+    for row in ("delta [um]", "interface 1 (above) max von Mises", "interface 2 (below) max sigma_1"):
+        assert row in out, out
