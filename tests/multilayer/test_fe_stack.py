@@ -235,6 +235,22 @@ def test_fe_agrees_with_exact_method(name):
         assert e_default < e_coarse or e_default <= FLOOR[q], msg
 
 
+@pytest.mark.parametrize("name", ["2L bonded 10:1", "2L frictionless 1:10", "2L incompressible top"])
+def test_three_methods_agree(name):
+    """FE (default mesh), DC-FFT (n = 128) and axisym pairwise within the issue's bounds. FFT vs
+    axisym measured: delta <= 2.2e-5, a <= 5.2e-4 (its radius estimator), p0 <= 2.9e-5. Not
+    here, as measured with the FFT of this commit: stacks on a rigid substrate (the FFT raises
+    ValueError in ``estimate_axes``) and "4L mixed interfaces" (FFT p0 off by 5.3e-3, also with
+    every interface bonded: 2.1e-3; FE and axisym agree to 2.4e-5 there)."""
+    from coathertz.fft.method import FFTMethod
+
+    c = CASES[name]()
+    results = {"axisym": exact(name), "fem": fe(name, "default"), "fft": FFTMethod(n=128).solve(c)}
+    for (m1, r1), (m2, r2) in itertools.combinations(results.items(), 2):
+        for q in QS:
+            assert err(r1, r2, q) <= BOUND[q], f"{name}: {m1} vs {m2}, {q}: {err(r1, r2, q):.2e}"
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("name", [*CASES, "tin_ti_on_steel", "dlc_crn_cr_on_steel"])
 def test_fe_converges_to_exact_method_slow(name):
