@@ -345,13 +345,14 @@ def _radial_grid(a_ref: float, h_edge: float, L: float, spec: MeshSpec) -> np.nd
     return _join(r_fine, graded(r_f, L, (r_fine[-1] - r_fine[-2]) * q, q))
 
 
-def _equidistribute(u: float, v: float, size, m: int = 16) -> np.ndarray:
-    """Points from ``u`` to ``v`` (both included) equidistributing the target spacing ``size(t)``:
-    ``n = ceil(int_u^v dt / size)`` intervals of equal ``int dt / size``, so every spacing is at
-    most ``size``; the integral by the trapezoidal rule on ``m`` sub-steps per target spacing."""
+def _equidistribute(u: float, v: float, size, size_at, m: int = 16) -> np.ndarray:
+    """Points from ``u`` to ``v`` (both included) equidistributing the target spacing ``size(t)``
+    (``size_at``: the same for one float): ``n = ceil(int_u^v dt / size)`` intervals of equal
+    ``int dt / size``, so every spacing is at most ``size``; the integral by the trapezoidal rule
+    on ``m`` sub-steps per target spacing."""
     x = [u]
     while x[-1] < v:
-        x.append(min(v, x[-1] + float(size(np.array([x[-1]]))[0]) / m))
+        x.append(min(v, x[-1] + size_at(x[-1]) / m))
     x = np.array(x)
     f = 1.0 / size(x)
     F = np.concatenate([[0.0], np.cumsum(0.5 * (f[1:] + f[:-1]) * np.diff(x))])
@@ -375,7 +376,7 @@ def stack_depths(a_ref: float, hs: Sequence[float], spec: MeshSpec, rigid_base: 
     t_f = spec.t_fine * a_ref
     d = np.concatenate([[0.0], np.cumsum(hs)])
     D = d[-1] if rigid_base else spec.L * max(a_ref, d[-1])
-    rules = [(0.0, t_f, s0)]
+    rules = [(0.0, t_f, s0)]  # (top, bottom, c): spacing c on [top, bottom], relaxing outside
     for i, h_i in enumerate(hs):
         rules.append((d[i], d[i + 1], h_i / spec.n_coat))
         if d[i] < t_f:
@@ -387,8 +388,11 @@ def stack_depths(a_ref: float, hs: Sequence[float], spec: MeshSpec, rigid_base: 
             out = np.minimum(out, c + (q - 1.0) * np.maximum(0.0, np.maximum(lo - t, t - hi)))
         return out
 
+    def size_at(t: float) -> float:
+        return min(c + (q - 1.0) * max(0.0, lo - t, t - hi) for lo, hi, c in rules)
+
     breaks = [*d, D] if D > d[-1] else list(d)
-    return _join(*(_equidistribute(u, v, size) for u, v in itertools.pairwise(breaks)))
+    return _join(*(_equidistribute(u, v, size, size_at) for u, v in itertools.pairwise(breaks)))
 
 
 def grids(

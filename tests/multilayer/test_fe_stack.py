@@ -125,6 +125,26 @@ def test_mesh_has_an_edge_line_on_every_interface_and_resolves_every_layer(level
                                     for a, b in itertools.pairwise(d))
 
 
+def test_mesh_of_random_stacks():
+    """60 random stacks (2-6 layers, h_i / a_ref from 1e-4 to 10, elastic or rigid substrate,
+    every mesh level): an edge line on every interface, >= n_coat elements through every layer,
+    adjacent depth intervals within a factor 2 (measured <= 1.52; the mesh guard refuses > 4)."""
+    rng = np.random.default_rng(19)
+    worst = 1.0
+    for k in range(60):
+        hs = tuple(10 ** rng.uniform(-4, 1, int(rng.integers(2, 7))))
+        rigid = bool(rng.integers(0, 2))
+        spec = MESH_LEVELS[("coarse", "default", "fine")[k % 3]]
+        _, t = grids(1.0, hs, spec, rigid)
+        d = np.concatenate([[0.0], np.cumsum(hs)])
+        k_at = [int(np.argmin(np.abs(t - x))) for x in d]
+        assert np.allclose(t[k_at], d, rtol=1e-12, atol=0), f"{hs}: interfaces off the grid"
+        assert min(np.diff(k_at)) >= spec.n_coat, f"{hs}: elements per layer {np.diff(k_at)}"
+        dt = np.diff(t)
+        worst = max(worst, float(np.max(np.maximum(dt[1:] / dt[:-1], dt[:-1] / dt[1:]))))
+    assert worst <= 2.0, f"largest adjacent depth-interval ratio {worst:.3g}"
+
+
 def test_mesh_regions_and_frictionless_node_sets():
     """Per-layer element sets, top first; every frictionless interface over an elastic body has
     its own second node row (none for the frictionless bottom face on a rigid base)."""
