@@ -456,8 +456,8 @@ def build_mesh(
     first), over an elastic (or, ``rigid_base``, rigid) substrate. ``interface``: one for the
     coating, or one per layer (its lower face); ``frictionless`` gives the two sides of that
     interface their own nodes (not on a rigid base, where only ``u_z = 0`` holds)."""
-    hs = thicknesses(h)
     _check_inputs(a_ref, h, rigid_base)
+    hs = thicknesses(h)
     ifs = (interface,) * len(hs) if isinstance(interface, str) else tuple(interface)
     if len(ifs) != len(hs):
         raise CoatHertzError(f"interface: one per layer expected ({len(hs)}), got {len(ifs)}")
@@ -492,7 +492,8 @@ def build_mesh(
     layers = tuple(np.nonzero((zc < -top) & (zc > -bot))[0] for top, bot in zip(tops, depths, strict=True))
     coating = np.nonzero(zc > -h_tot)[0] if hs else np.array([], dtype=np.int64)
     substrate = np.nonzero(zc <= -h_tot)[0] if not rigid_base else np.array([], dtype=np.int64)
-    summary = "frictionless" if "frictionless" in ifs else (ifs[0] if ifs else interface)
+    single = interface if isinstance(interface, str) else "bonded"
+    summary = "frictionless" if "frictionless" in ifs else (ifs[0] if ifs else single)
     return LayeredMesh(mesh, coating, substrate, a_ref, h_tot, L, D, r_f, rigid_base, spec, summary,
                        layers, depths, ifs)
 
