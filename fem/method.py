@@ -80,10 +80,7 @@ def axisymmetric_equivalent(case: ContactCase, stacks: bool = False) -> Equivale
         return Equivalent(b1, case.R, 1.0)
     pair = case.identical_pair_equivalent()  # the one two-identical-bodies equivalence
     if pair is not None:
-        body = pair.body2
-        if b1.is_stacked:  # the pair's equivalent half-space keeps the stack
-            body = Body(b1.material, None, body.Rx, body.Ry, layers=b1.layers)
-        return Equivalent(body, pair.R, case.IDENTICAL_PAIR_DELTA_FACTOR)
+        return Equivalent(pair.body2, pair.R, case.IDENTICAL_PAIR_DELTA_FACTOR)
     for ind, other in ((b1, b2), (b2, b1)):
         if not ind.is_coated and not ind.is_stacked and not ind.material.is_rigid and not other.is_rigid:
             return Equivalent(other, case.R, 1.0, indenter=ind.material)
