@@ -139,7 +139,7 @@ def _radial_rule(Rm, a, z):
     """Gauss rule on [0, Rm]: panels of width ~z/2 around the contact edge, then growing."""
     fine = np.linspace(max(a - 4 * z, 0), a + 4 * z, 17)
     edges = np.unique(np.concatenate([np.linspace(0, fine[0], 9), fine, np.geomspace(fine[-1], Rm, 24)]))
-    zg, wg = npleg.leggauss(20)
+    zg, wg = npleg.leggauss(12)
     lo, hi = edges[:-1, None], edges[1:, None]
     return (0.5 * (hi - lo) * zg + 0.5 * (hi + lo)).ravel(), (0.5 * (hi - lo) * wg).ravel()
 
@@ -161,6 +161,8 @@ def test_equilibrium(body):
         sz = S.field(r, [z]).sigma[0, 2]
         tail = W * z**3 / (Rm**2 + z**2) ** 1.5
         errs.append(abs(-(sz * 2 * np.pi * r) @ w + tail - W) / W)
+    # measured: 2e-8, 5e-7, 2.5e-6, 7.6e-6 (hard, bonded) and 4e-9 .. 4.8e-6 (soft, frictionless)
+    # at z = 0.05, 0.2, 0.5, a: growing with z like the tail estimate's error
     assert max(errs) < 2e-5, f"|int sigma_zz dA + W| / W per depth: {np.array(errs)}"
 
 

@@ -44,10 +44,10 @@ Quadrature
 In ``xi = k a`` the integrands are ``(E_ref/(pi a)) S(xi/a, z) g^(xi) J_n(xi r/a) xi``: ``g^``
 oscillates with period ``2 pi`` and decays like ``xi^-2`` (smooth edge), ``J_n(xi rho)`` with
 period ``2 pi/rho``, and ``S`` decays like ``e^{-xi z/a}`` times a polynomial. Composite
-Gauss--Legendre (``order`` nodes per panel): geometric panels ``2^-24 .. 2`` (the scales
-``a/z`` and ``a/h`` of deep points and thick layers), then panels of width
+Gauss--Legendre (``order`` nodes per panel): geometric panels from ``2^-24`` (the scales
+``a/z`` and ``a/h`` of deep points and thick layers) up to the uniform width, then panels of width
 ``w = min(2, 8/(1 + rho_max))`` (at most 8 radians of the fastest oscillation per 16-node panel)
-up to ``X = cut * a / z_min`` (``cut = 45``: ``e^{-45} = 3e-20``). The ``J_n`` and ``g^`` do not
+up to ``X = cut * a / z_min`` (``cut = 32``: ``e^{-32} = 1e-14``). The ``J_n`` and ``g^`` do not
 depend on the depth: one pass over the nodes in chunks gives all depths by matrix products.
 
 *The surface* ``z = 0`` (where ``e^{-kz}`` no longer cuts the integrals off) is taken in closed
@@ -61,11 +61,13 @@ responses' limit at ``k -> inf`` (the top layer as a half-space: ``S_kk = -1``,
            \sigma_{rr} - \sigma_{\theta\theta} = (1 - 2\nu_1)\bigl(2 m(r)/r^2 - p\bigr) + R_-,
 
 where the remainders ``R`` integrate ``S(k, 0) - S(inf, 0)``, which decays like
-``e^{-2 k h_1}`` (cut at ``45 a / (2 h_1)``; zero on a homogeneous body: there the surface is
+``e^{-2 k h_1}`` (cut at ``cut a / (2 h_1)``; zero on a homogeneous body: there the surface is
 Boussinesq's exactly, e.g. ``sigma_rr = (1 - 2 nu) W / (2 pi r^2)`` outside the contact).
-``m(r)`` is integrated in ``r = a sin(phi)`` (smooth integrand). Depths ``0 < z < z_min`` with
-``cut * a / z_min`` beyond ``MAX_XI`` are refused (the cost grows like ``a / z``): use
-``z = 0`` or a depth at least ``cut * a / MAX_XI``.
+``m(r)`` is integrated in ``r = a sin(phi)`` (smooth integrand). Depths ``0 < z`` needing more
+than ``MAX_NODES`` nodes are refused (the cost grows like ``a / z``): use
+``z = 0`` or a depth at least :meth:`AxisymStresses.min_depth`. The nodes are processed in
+chunks (coefficients, ``g^``, responses and Bessel functions per chunk), so memory does not grow
+with ``X``, and each depth uses the nodes up to its own cut-off only.
 
 Accuracy (``tests/stresses/test_axisym_stresses.py``): a homogeneous body (and a coating or stack
 of the substrate's material) equals Huber's closed form (Johnson eq 3.44--3.46) to 2e-13 p0 at and
@@ -97,10 +99,11 @@ from coathertz.results import ContactResult
 
 #: Components of a field's component axis: ``sigma_rr, sigma_tt (theta), sigma_zz, sigma_rz``.
 COMPONENTS = ("rr", "tt", "zz", "rz")
-#: The xi integrals stop where ``e^{-xi z / a} = e^{-CUT}``.
-CUT = 45.0
-#: Most xi nodes a field may use (sets the smallest positive depth, ``CUT a / (MAX_XI / ...)``).
-MAX_NODES = 400_000
+#: The xi integrals stop where ``e^{-xi z / a} = e^{-CUT}`` (measured: 20 leaves < 1e-10 p0).
+CUT = 32.0
+#: Most xi nodes a field may use: sets the smallest positive depth (:meth:`AxisymStresses.min_depth`,
+#: ~6e-4 a for radii to 3a); the cost grows like ``radii x nodes``.
+MAX_NODES = 600_000
 SIDES = ("above", "below")
 
 
@@ -283,11 +286,14 @@ class AxisymStressField:
 
 
 def _xi_nodes(X: float, width: float, order: int) -> tuple[np.ndarray, np.ndarray]:
-    """Composite Gauss--Legendre on ``[0, X]``: geometric panels ``2^-24 .. 2``, then width
-    ``width`` (module docstring)."""
-    geo = 2.0 ** np.arange(-24, 2)
-    n_uni = max(1, math.ceil((X - 2.0) / width))
-    b = np.concatenate([[0.0], geo, 2.0 + width * np.arange(1, n_uni + 1)])
+    """Composite Gauss--Legendre on ``[0, X]``: geometric panels from ``2^-24`` up to
+    ``xi_s = 2^floor(log2 width)`` (no panel wider than ``width``), then of width ``width``
+    (module docstring)."""
+    top = math.floor(math.log2(width))
+    geo = 2.0 ** np.arange(-24, top + 1)
+    xs = geo[-1]
+    n_uni = max(1, math.ceil((X - xs) / width))
+    b = np.concatenate([[0.0], geo, xs + width * np.arange(1, n_uni + 1)])
     zg, wg = npleg.leggauss(order)
     lo, hi = b[:-1, None], b[1:, None]
     return (0.5 * (hi - lo) * zg + 0.5 * (hi + lo)).ravel(), (0.5 * (hi - lo) * wg).ravel()
@@ -364,6 +370,17 @@ class AxisymStresses:
         return self.a**2 * (p * s * np.cos(phi)) @ (0.5 * wg) * phi_max[:, 0]
 
     # the field --------------------------------------------------------------------------------
+    def _width(self, r_max: float) -> float:
+        """Uniform xi panel width for radii up to ``r_max`` (module docstring)."""
+        rho_max = max(r_max / self.a, 1.0)
+        return min(2.0, 8.0 / (1.0 + rho_max)) * (self.order / 16.0)
+
+    def min_depth(self, r_max: float) -> float:
+        """Smallest positive depth [m] the quadrature takes for radii up to ``r_max`` [m]
+        (``MAX_NODES`` nodes)."""
+        n_panels = MAX_NODES / self.order - 26
+        return self.cut * self.a / (n_panels * self._width(r_max))
+
     def field(self, r, z, side: str = "above", chunk: int = 2048) -> AxisymStressField:
         """``sigma_rr, sigma_tt, sigma_zz, sigma_rz`` [Pa] at every ``(r, z)`` of the lattice.
 
@@ -386,51 +403,51 @@ class AxisymStresses:
             raise CoatHertzError(f"axisym stresses: body{self.body_index} depth z = {bad[0]:g} m "
                                  f"outside the body (valid: 0 to {bottom:g} m)")
         a = self.a
-        rho_max = max(float(r.max()) / a, 1.0)
-        width = min(2.0, 8.0 / (1.0 + rho_max)) * (self.order / 16.0)
+        width = self._width(float(r.max()))
         zpos = z[z > 0]
-        X = 40.0
-        if zpos.size:
-            X = max(X, self.cut * a / float(zpos.min()))
         surface = bool(np.any(z == 0))
         h1 = self.response.parts[0].h if self.response.parts else math.inf
-        if surface and math.isfinite(h1):
-            X = max(X, self.cut * a / (2.0 * h1))
-        n_nodes = self.order * (26 + math.ceil((X - 2.0) / width))
+        # each depth needs the nodes up to its own cut-off only (deep points: a few hundred); the
+        # surface only for the remainder S(k, 0) - S(inf, 0) ~ e^{-2 k h1}
+        z_safe = np.where(z > 0, z, 1.0)
+        X_z = np.where(z > 0, self.cut * a / z_safe,
+                       self.cut * a / (2.0 * h1) if math.isfinite(h1) else 0.0)
+        X = max(40.0, float(X_z.max()))
+        n_nodes = self.order * (26 + math.ceil(X / width))
         if n_nodes > MAX_NODES:
-            z_ok = self.cut * a * self.order / (MAX_NODES * width)
             raise CoatHertzError(
                 f"axisym stresses: depth z = {float(zpos.min()):g} m is too close to the surface for "
                 f"the Hankel quadrature (needs {n_nodes} nodes > {MAX_NODES}); use z = 0 (exact "
-                f"surface limit) or z >= {z_ok:g} m")
+                f"surface limit) or z >= {self.min_depth(float(r.max())):g} m")
         xi, w = _xi_nodes(X, width, self.order)
-        k = xi / a
-        gh = _g_hat(self.sol.c, xi)
-        coef = self.response.coefficients(k)
-        base = gh * xi * w * self.scale
-        nz = z.size
-        # weights per component combination: (n_xi, nz) each
-        V0zz, V0tr, V2dev, V1rz = (np.empty((xi.size, nz)) for _ in range(4))
         top = self.response.parts[0].material if self.response.parts else self.response.substrate
         nu1 = top.nu
-        for j, zj in enumerate(z):
-            kk, pp, zz, kz = self.response.rows(k, coef, float(zj), side)
-            if zj == 0:  # subtract the k -> inf limit (added in closed form below)
-                kk, pp, zz, kz = kk + 1.0, pp + 2.0 * nu1, zz * 0.0, kz * 0.0
-            V0zz[:, j] = zz * base
-            V0tr[:, j] = (kk + pp) * base
-            V2dev[:, j] = -(kk - pp) * base
-            V1rz[:, j] = kz * base
+        nz = z.size
         zz_, tr_, dev_, rz_ = (np.zeros((r.size, nz)) for _ in range(4))
-        for i in range(0, xi.size, chunk):
-            sl = slice(i, i + chunk)
-            x = np.outer(r / a, xi[sl])
+        for i in range(0, xi.size, chunk):  # memory bounded by the chunk, whatever X
+            act = np.nonzero(X_z >= xi[i])[0]
+            if act.size == 0:
+                break
+            xs = xi[i:i + chunk]
+            k = xs / a
+            coef = self.response.coefficients(k)
+            base = _g_hat(self.sol.c, xs) * xs * w[i:i + chunk] * self.scale
+            V = np.empty((4, xs.size, act.size))  # zz (J0), trace (J0), deviator (J2), rz (J1)
+            for col, j in enumerate(act):
+                kk, pp, zz, kz = self.response.rows(k, coef, float(z[j]), side)
+                if z[j] == 0:  # subtract the k -> inf limit (added in closed form below)
+                    kk, pp, zz, kz = kk + 1.0, pp + 2.0 * nu1, zz * 0.0, kz * 0.0
+                V[0, :, col] = zz * base
+                V[1, :, col] = (kk + pp) * base
+                V[2, :, col] = -(kk - pp) * base
+                V[3, :, col] = kz * base
+            x = np.outer(r / a, xs)
             J0, J1 = special.j0(x), special.j1(x)
             J2 = np.where(x > 0, 2.0 * J1 / np.where(x > 0, x, 1.0) - J0, 0.0)
-            zz_ += J0 @ V0zz[sl]
-            tr_ += J0 @ V0tr[sl]
-            dev_ += J2 @ V2dev[sl]
-            rz_ += J1 @ V1rz[sl]
+            zz_[:, act] += J0 @ V[0]
+            tr_[:, act] += J0 @ V[1]
+            dev_[:, act] += J2 @ V[2]
+            rz_[:, act] += J1 @ V[3]
         if surface:
             j0s = np.nonzero(z == 0)[0]
             p = self.pressure(r)
@@ -450,15 +467,17 @@ class AxisymStresses:
 
 def default_depths(body: Body, a: float) -> np.ndarray:
     """Depths [m] resolving the layers and both sides of each interface, down to ``max(3a, 2 H)``
-    (``H`` the total layer thickness; to ``H`` on a rigid base): 16 steps per layer (the
-    interface depths once, the layer above's side; :meth:`AxisymStresses.field` with
-    ``side="below"`` gives the other), then 32 geometric steps. Homogeneous: 0 to a in 40 steps,
+    (``H`` the total layer thickness; to ``H`` on a rigid base): 16 steps per layer, each
+    interface depth (the layer above) and ``1e-9`` of it deeper (the layer below), then 32
+    geometric steps. Homogeneous: 0 to a in 40 steps,
     a to 3a in 20."""
     parts = [L for L in body.stack if L.h > 0]
     if not parts:
         return np.concatenate([np.linspace(0, a, 41), np.linspace(a, 3 * a, 21)[1:]])
     zs, z0 = [np.zeros(1)], 0.0
-    for L in parts:
+    for i, L in enumerate(parts):
+        if i:  # the lower side of the interface above
+            zs.append(np.array([z0 * (1 + 1e-9)]))
         zs.append(z0 + np.linspace(0, L.h, 17)[1:])
         z0 += L.h
     if not body.material.is_rigid:
