@@ -12,6 +12,8 @@ PNG and VTU files), the field the designer's maxima are read from, and the inter
   on the ``r-z`` half-plane (radii clustered at the contact edge, where the surface tension
   peaks; depths through every layer and both sides of each interface); the files hold the
   exact field revolved onto an ``n x n`` lattice of the same extent as the FFT's.
+* ``fem``: the axisymmetric FE solution (default mesh) and its recovered stresses
+  (:mod:`coathertz.fem.stress_points`) on the same ``r-z`` points; frictionless, one coating.
 """
 
 from __future__ import annotations
@@ -24,6 +26,7 @@ import numpy as np
 
 from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError
+from coathertz.materials import Body
 
 
 @dataclass(frozen=True)
@@ -80,6 +83,25 @@ def fft_stresses(case: ContactCase, opt: StressOptions) -> StressResult:
                         f"FFT {opt.grid}^2", lattice, dict(f.meta))
 
 
+def default_depths(body: Body, a: float) -> np.ndarray:
+    """Depths [m] resolving the layers and both sides of each interface, down to ``max(3a, 2 H)``
+    (``H`` the total layer thickness; to ``H`` on a rigid base): 16 steps per layer, each
+    interface depth (the layer above) and ``1e-9`` of it deeper (the layer below), then 32
+    geometric steps. Homogeneous: 0 to a in 40 steps, a to 3a in 20."""
+    parts = [L for L in body.stack if L.h > 0]
+    if not parts:
+        return np.concatenate([np.linspace(0, a, 41), np.linspace(a, 3 * a, 21)[1:]])
+    zs, z0 = [np.zeros(1)], 0.0
+    for i, L in enumerate(parts):
+        if i:  # the lower side of the interface above
+            zs.append(np.array([z0 * (1 + 1e-9)]))
+        zs.append(z0 + np.linspace(0, L.h, 17)[1:])
+        z0 += L.h
+    if not body.material.is_rigid:
+        zs.append(np.geomspace(z0 * (1 + 1e-9), max(3 * a, 2 * z0), 32))
+    return np.concatenate(zs)
+
+
 def summary_radii(a: float, r_max: float) -> np.ndarray:
     """Radii [m] for the maxima: 0 to ``r_max``, clustered at and beyond the contact edge
     (steps ``a/200`` within ``0.8a .. 1.6a``, ``r = a`` itself included: the surface tension peaks
@@ -93,7 +115,7 @@ def summary_radii(a: float, r_max: float) -> np.ndarray:
 def axisym_stresses(case: ContactCase, opt: StressOptions) -> StressResult:
     """Exact axisymmetric solution and its stress field (:mod:`coathertz.axisym.stresses`)."""
     from coathertz.axisym.method import AxisymMethod
-    from coathertz.axisym.stresses import AxisymStresses, default_depths
+    from coathertz.axisym.stresses import AxisymStresses
 
     if opt.mu != 0 or opt.Q is not None:
         raise CoatHertzError("--method axisym: the exact method gives the frictionless normal "
@@ -118,22 +140,59 @@ def axisym_stresses(case: ContactCase, opt: StressOptions) -> StressResult:
     inter = tuple((zb, S.field(r, [zb], side="above").voigt()[0]) for zb in bottoms)
     lattice = None
     if opt.lattice:
-        lattice = _revolve(S, z, a, opt.grid)
+        lattice = _revolve(lambda rr: S.field(rr, z).sigma, z, a, opt.grid)
     meta = {**F.meta, "radii": int(r.size), "r_max": float(r[-1]), "depths_dropped": dropped}
     return StressResult(r, np.zeros(1), z, F.voigt(), inter, a, a, a, res.p0,
                         "exact axisymmetric", lattice, meta)
 
 
-def _revolve(S, z: np.ndarray, a: float, n: int) -> tuple:
-    """The exact field on the ``n x n`` cell centres of a square of side ``2.5 a`` (the FFT's
-    default domain) at the depths ``z``, by evaluating it at every distinct radius and rotating
-    ``(rr, tt, rz)`` to ``(xx, yy, xy, xz, yz)``."""
+def fem_stresses(case: ContactCase, opt: StressOptions) -> StressResult:
+    """Axisymmetric FE solution (default mesh) and its recovered stresses sampled on the ``r-z``
+    half-plane (:mod:`coathertz.fem.stress_points`): radii to ``min(3a, L)`` clustered at the
+    edge, the depths of :func:`default_depths`."""
+    from coathertz.fem.method import FEMMethod
+    from coathertz.fem.post import StressField
+    from coathertz.fem.stress_points import sample
+
+    if opt.mu != 0 or opt.Q is not None:
+        raise CoatHertzError("--method fem: the FE model is frictionless (no tangential traction; got "
+                             f"--mu {opt.mu:g}); use --method fft for friction")
+    fm = FEMMethod()
+    res, model, path = fm.solve_full(case)
+    a = res.a
+    body = case.body2
+    z = default_depths(body, a) if opt.depths is None else np.asarray(opt.depths, float)
+    sf = StressField(model, path.x)
+    r = summary_radii(a, min(3 * a, model.lm.L))
+    sig = sample(model, path.x, r, z, field=sf)
+    H = model.lm.h
+
+    def voigt(f: np.ndarray) -> np.ndarray:  # (nz, 4, nr) -> (nz, 6, 1, nr)
+        rr, tt, zz, rz = (f[:, j] for j in range(4))
+        zero = np.zeros_like(rr)
+        return np.stack([rr, tt, zz, zero, rz, zero], axis=1)[:, :, None, :]
+
+    inter: tuple = ()
+    if H > 0:
+        inter = ((H, voigt(sample(model, path.x, r, [H], field=sf))[0]),)
+    lattice = None
+    if opt.lattice:
+        lattice = _revolve(lambda rr: sample(model, path.x, rr, z, field=sf), z, a, opt.grid)
+    meta = {"method": "fem", "elements": res.meta["elements"], "mesh": fm.mesh, "radii": int(r.size)}
+    return StressResult(r, np.zeros(1), z, voigt(sig), inter, a, a, a, res.p0,
+                        f"FE ({res.meta['elements']} elements)", lattice, meta)
+
+
+def _revolve(field_at: Callable[[np.ndarray], np.ndarray], z: np.ndarray, a: float, n: int) -> tuple:
+    """An axisymmetric field on the ``n x n`` cell centres of a square of side ``2.5 a`` (the FFT's
+    default domain) at the depths ``z``: ``field_at(radii)`` (``(nz, 4, nr)``: ``rr, tt, zz, rz``)
+    at every distinct radius, rotated to ``(xx, yy, zz, yz, xz, xy)``."""
     dx = 2.5 * a / n
     x = (np.arange(n) - n // 2) * dx
     X, Y = np.meshgrid(x, x)
     R = np.hypot(X, Y)
     radii, inv = np.unique(np.round(R / dx, 9), return_inverse=True)
-    f = S.field(radii * dx, z).sigma  # (nz, 4, nr)
+    f = field_at(radii * dx)
     rr, tt, zz, rz = (f[:, j][:, inv.reshape(R.shape)] for j in range(4))
     th = np.arctan2(Y, X)
     c, s = np.cos(th), np.sin(th)
@@ -146,6 +205,7 @@ def _revolve(S, z: np.ndarray, a: float, n: int) -> tuple:
 STRESS_METHODS: dict[str, Callable[[ContactCase, StressOptions], StressResult]] = {
     "fft": fft_stresses,
     "axisym": axisym_stresses,
+    "fem": fem_stresses,
 }
 
 

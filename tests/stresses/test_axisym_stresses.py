@@ -10,11 +10,12 @@ import pytest
 from numpy.polynomial import legendre as npleg
 
 from coathertz.axisym.method import AxisymMethod
-from coathertz.axisym.stresses import AxisymStresses, StackResponse, body_parts, default_depths
+from coathertz.axisym.stresses import AxisymStresses, StackResponse, body_parts
 from coathertz.case import ContactCase
 from coathertz.casefile import load_example
 from coathertz.errors import CoatHertzError
 from coathertz.materials import RIGID, Body, Coating, Layer, Material
+from coathertz.stress_methods import default_depths
 
 from .huber import huber
 

@@ -464,22 +464,3 @@ class AxisymStresses:
                 "interface": self.result.meta["interface"], "n_modes": int(self.sol.c.size)}
         return AxisymStressField(r, z, sigma, meta)
 
-
-def default_depths(body: Body, a: float) -> np.ndarray:
-    """Depths [m] resolving the layers and both sides of each interface, down to ``max(3a, 2 H)``
-    (``H`` the total layer thickness; to ``H`` on a rigid base): 16 steps per layer, each
-    interface depth (the layer above) and ``1e-9`` of it deeper (the layer below), then 32
-    geometric steps. Homogeneous: 0 to a in 40 steps,
-    a to 3a in 20."""
-    parts = [L for L in body.stack if L.h > 0]
-    if not parts:
-        return np.concatenate([np.linspace(0, a, 41), np.linspace(a, 3 * a, 21)[1:]])
-    zs, z0 = [np.zeros(1)], 0.0
-    for i, L in enumerate(parts):
-        if i:  # the lower side of the interface above
-            zs.append(np.array([z0 * (1 + 1e-9)]))
-        zs.append(z0 + np.linspace(0, L.h, 17)[1:])
-        z0 += L.h
-    if not body.material.is_rigid:
-        zs.append(np.geomspace(z0 * (1 + 1e-9), max(3 * a, 2 * z0), 32))
-    return np.concatenate(zs)
