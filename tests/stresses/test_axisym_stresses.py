@@ -278,3 +278,23 @@ def test_fft_converges_to_exact(name):
     order = math.log2(errs[64][0] / errs[128][0])
     assert order > 1.0, (f"z = 0.1a: error {errs[64][0]:.2e} -> {errs[128][0]:.2e} p0 "
                          f"(n = 64 -> 128), observed order {order:.2f}")
+
+
+def test_revolved_lattice_equals_huber(homogeneous):
+    """The files' lattice (the exact field at every distinct radius, rotated to x, y): Huber's
+    field in Cartesian components at every cell centre."""
+    from coathertz.stress_methods import StressOptions, axisym_stresses
+
+    case, res, _ = homogeneous
+    a, p0 = res.a, res.p0
+    out = axisym_stresses(case, StressOptions(grid=16, depths=(0.3 * a, a), lattice=True))
+    x, y, z, sig = out.lattice
+    X, Y = np.meshgrid(x, y)
+    R, th = np.hypot(X, Y), np.arctan2(Y, X)
+    c, s = np.cos(th), np.sin(th)
+    for i, zi in enumerate(z):
+        sr, st, sz, trz = _huber_field(R, zi, a, STEEL.nu, p0)
+        ref = np.array([c * c * sr + s * s * st, s * s * sr + c * c * st, sz, s * trz, c * trz,
+                        c * s * (sr - st)])
+        err = np.abs(sig[i] - ref).max() / p0
+        assert err < 1e-9, f"z = {zi / a:.2g} a: max |lattice - Huber| = {err:.2e} p0"

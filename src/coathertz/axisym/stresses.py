@@ -102,7 +102,7 @@ COMPONENTS = ("rr", "tt", "zz", "rz")
 #: The xi integrals stop where ``e^{-xi z / a} = e^{-CUT}`` (measured: 20 leaves < 1e-10 p0).
 CUT = 32.0
 #: Most xi nodes a field may use: sets the smallest positive depth (:meth:`AxisymStresses.min_depth`,
-#: ~6e-4 a for radii to 3a); the cost grows like ``radii x nodes``.
+#: ~4e-4 a for radii to 3a); the cost grows like ``radii x nodes``.
 MAX_NODES = 600_000
 SIDES = ("above", "below")
 
