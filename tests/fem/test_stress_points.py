@@ -11,6 +11,7 @@ import pytest
 
 from coathertz.axisym.method import AxisymMethod
 from coathertz.axisym.stresses import AxisymStresses
+from coathertz.case import ContactCase
 from coathertz.casefile import load_example
 from coathertz.errors import CoatHertzError
 from coathertz.fem.method import FEMMethod
@@ -85,3 +86,26 @@ def test_interface_sides_and_bad_points():
         sample(model, path.x, r, [-1e-6])
     with pytest.raises(CoatHertzError, match="side must be one of"):
         sample(model, path.x, r, [h], side="middle")
+
+
+@pytest.mark.parametrize(("E", "H"), [(0.25, 0.01), (0.25, 3.0), (4.0, 0.01), (4.0, 3.0)])
+def test_fem_fig3_corners(E, H):
+    """Default mesh against the exact field on the corners of fig. 3 (rigid sphere 10 mm, 100 N,
+    steel substrate, coating E = Ec/Es, h = H a0), at r = 0..0.7a, 1.3a and z = 0.1a, 0.3a,
+    0.45a (and h if shallower): measured 2e-4, 3.6e-4, 2.3e-4, 1.8e-4 p0."""
+    from coathertz.closedform.hertz import hertz_circular
+    from coathertz.materials import Body, Coating, Material
+
+    steel = Material(200e9, 0.3)
+    a0 = hertz_circular(100.0, 10e-3, steel.E_star).a0
+    case = ContactCase(Body.rigid_sphere(10e-3), Body(steel, Coating(Material(E * 200e9, 0.3), H * a0)),
+                       100.0)
+    res = AxisymMethod().solve(case)
+    a, p0, h = res.a, res.p0, H * a0
+    z = np.array([0.1, 0.3, 0.45]) * a
+    if h < 0.45 * a:
+        z = np.sort(np.append(z, h))
+    r = RHO * a
+    _, model, path = FEMMethod().solve_full(case)
+    err = np.abs(sample(model, path.x, r, z) - AxisymStresses(case, res).field(r, z).sigma).max() / p0
+    assert err < 1e-3, f"E = {E}, H = {H}: max |FE - exact| / p0 = {err:.2e}"
