@@ -35,7 +35,8 @@ def sample(model: FEModel, x: np.ndarray, r, z, side: str = "above",
     Parameters
     ----------
     model, x
-        The FE model and its solution vector (``LoadPath.x`` of :meth:`FEMMethod.solve_full`).
+        The FE model and its solution vector (``LoadPath.x`` of
+        :meth:`~coathertz.fem.method.FEMMethod.solve_full`).
     r, z
         Radii ``0 <= r <= L`` and depths ``0 <= z <= D`` [m] inside the meshed body.
     side
