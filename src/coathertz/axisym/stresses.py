@@ -360,7 +360,8 @@ class AxisymStresses:
         return out
 
     def load_within(self, r: np.ndarray) -> np.ndarray:
-        """``m(r) = int_0^r p s ds`` [N/m^0 per rad] with ``r = a sin(phi)`` (Gauss, smooth)."""
+        """``m(r) = int_0^r p(s) s ds`` [N] (the load within ``r`` is ``2 pi m``), by Gauss in
+        ``s = a sin(phi)`` (smooth integrand)."""
         rho = np.minimum(np.asarray(r, float) / self.a, 1.0)
         zg, wg = npleg.leggauss(2 * self.sol.c.size + 24)
         phi_max = np.arcsin(rho)[:, None]
