@@ -126,17 +126,22 @@ def axisym_stresses(case: ContactCase, opt: StressOptions) -> StressResult:
     a = res.a
     H = S.response.depth
     r = summary_radii(a, max(3 * a, 2 * H))
+    z_min = S.min_depth(float(r[-1]))
+    bottoms = [p.z0 + p.h for p in S.response.parts]  # on a rigid base the last is the base itself
+    if bottoms and bottoms[0] < z_min:
+        raise CoatHertzError(
+            f"--method axisym: body2's top layer (h = {bottoms[0] * 1e6:.3g} um = {bottoms[0] / a:.2g} a) "
+            f"is thinner than the smallest depth the Hankel quadrature takes ({z_min * 1e6:.3g} um): "
+            "its interface stresses are out of reach; use --method fft")
     dropped = 0
     if opt.depths is None:
         z = default_depths(body, a)
-        keep = (z == 0) | (z >= S.min_depth(float(r[-1])))  # thin layers: the quadrature's floor
+        keep = (z == 0) | (z >= z_min)  # thin layers: the quadrature's floor
         dropped = int(np.sum(~keep))
         z = z[keep]
     else:
         z = np.asarray(opt.depths, float)
     F = S.field(r, z)
-    parts = S.response.parts
-    bottoms = [p.z0 + p.h for p in parts]  # on a rigid base the last is the base itself
     inter = tuple((zb, S.field(r, [zb], side="above").voigt()[0]) for zb in bottoms)
     lattice = None
     if opt.lattice:

@@ -160,6 +160,7 @@ def test_axisym_stack(capsys):
 @pytest.mark.parametrize(("extra", "text"), [
     (["--mu", "0.2"], "--method axisym: the exact method gives the frictionless normal solution only"),
     (["--R", "10 mm", "--depths", "1e-9"], "too close to the surface"),
+    (["--coating", "300 GPa,0.2,50 nm"], "is thinner than the smallest depth the Hankel quadrature"),
 ])
 def test_axisym_bad_input_one_line(capsys, extra, text):
     assert main(["stresses", *BASE, "--method", "axisym", *extra]) == 2
