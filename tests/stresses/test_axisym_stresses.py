@@ -313,13 +313,13 @@ def _fig3_corner(E: float, H: float) -> ContactCase:
 @pytest.mark.parametrize(("E", "H", "pad"), [(0.25, 0.01, 4), (0.25, 3.0, 16), (4.0, 0.01, 4),
                                              (4.0, 3.0, 16)])
 def test_fft_fig3_corners(E, H, pad):
-    """FFT (64^2) against the exact field at z = 0.1a, 0.3a, 0.45a, r <= 1.5a on the corners of
-    fig. 3. Measured (128^2, pad 8): 8e-5 .. 4e-4 p0, except E = 4, H = 3 (h = 4.75a), where the
-    lateral stresses carry a uniform error that only the period cures: 0.115 / 0.014 / 0.0013 p0
-    with pad 4 / 8 / 16 (the FFT's image correction takes the w -> 0 limit, the substrate's far
-    field, while the period is ~2h: fft/stresses.py docstring). Hence pad 16 for the thick
-    coatings; the thin ones keep the default 4 (their FFT grid is refined to 260^2 for the layer,
-    and a 16-fold period would cost ~45 s)."""
+    """FFT (64^2, its default period) against the exact field at z = 0.1a, 0.3a, 0.45a,
+    r <= 1.5a on the corners of fig. 3. Measured (128^2, pad 8): 8e-5 .. 4e-4 p0, except for
+    the thick coatings (h = 4.75a), where the lateral stresses carry a uniform error that only
+    the period cures: 0.115 / 0.014 / 0.0013 p0 with pad 4 / 8 / 16 at E = 4 (the FFT's image
+    correction takes the w -> 0 limit, the substrate's far field, while the period is ~2h:
+    fft/stresses.py docstring). The default period (``image_pad``) now widens to 16 for them by
+    itself; the thin ones keep 4 (their FFT grid is refined to 260^2 for the layer)."""
     from coathertz.fft.method import FFTMethod
     from coathertz.fft.stresses import contact_stresses
 
@@ -328,7 +328,8 @@ def test_fft_fig3_corners(E, H, pad):
     a, p0 = res.a, res.p0
     z = np.array([0.1, 0.3, 0.45]) * a
     rf = FFTMethod(n=64).solve(case)
-    F = contact_stresses(case, rf, depths=z, pad=pad)
+    F = contact_stresses(case, rf, depths=z)
+    assert F.meta["pad"] == pad, F.meta
     j = int(np.argmin(np.abs(F.y)))
     sel = (F.x >= 0) & (F.x <= 1.5 * a)
     exact = AxisymStresses(case, res).field(F.x[sel], z).voigt()[:, :, 0, :]
