@@ -518,9 +518,14 @@ def _kill_pool(ex: ProcessPoolExecutor) -> None:
     """Terminate the workers of ``ex`` at once (an interrupted run does not wait for the cases in
     flight: an FE case can take minutes) and shut it down."""
     _AHEAD.clear()
-    for p in list((getattr(ex, "_processes", None) or {}).values()):
-        p.terminate()
-    ex.shutdown(wait=False, cancel_futures=True)
+    procs = list((getattr(ex, "_processes", None) or {}).values())
+    for p in procs:
+        p.terminate()  # SIGTERM: a worker dies at once (worker_init leaves its default action)
+    for p in procs:
+        p.join(timeout=5.0)
+    # then wait for the executor's own thread: left running, it closes its wake-up pipe while the
+    # interpreter's exit hook of concurrent.futures still writes to it ("Bad file descriptor")
+    ex.shutdown(wait=not any(p.is_alive() for p in procs), cancel_futures=True)
 
 
 class worker_pool:  # a context manager, named like the function it reads as

@@ -91,8 +91,7 @@ def test_next_call_runs_ahead_and_is_adopted_once(tmp_path):
     """``ahead``: as a call's own chunks run out, the next call's unstored tasks start on the free
     workers; the next call records them (each case solved exactly once, the same numbers as a
     serial run) and the block's end drops what no call adopted."""
-    from coathertz import runner
-
+    ahead = run_tasks.__globals__["_AHEAD"]  # run_tasks' own (another test may re-import the module)
     log = tmp_path / "log"
     m = FakeMethod(delay=0.01, log=str(log))
     cs = cases(16)
@@ -100,14 +99,14 @@ def test_next_call_runs_ahead_and_is_adopted_once(tmp_path):
     with ResultStore(tmp_path / "s.sqlite", version="t") as st, worker_pool(2):
         st.put(cs[9], "fake", m.settings(), {"a": 1.0}, None)  # stored: not started again
         out1 = run_tasks(first, st, workers=2, progress=False, chunk_size=1, ahead=lambda: second)
-        started = {c.label for _, chunk in [*runner._AHEAD.running.values(), *runner._AHEAD.queued]
+        started = {c.label for _, chunk in [*ahead.running.values(), *ahead.queued]
                    for c in chunk}
         assert started == {f"c{i}" for i in range(4, 9)}, started  # not c2, c3 (first's), nor c9
         out2 = run_tasks(second, st, workers=2, progress=False, chunk_size=1, ahead=lambda: third)
         assert (out1.computed, out2.computed, out2.reused) == (4, 5, 3)
-        assert not runner._AHEAD.queued and {c.label for _, ch in runner._AHEAD.running.values()
+        assert not ahead.queued and {c.label for _, ch in ahead.running.values()
                                              for c in ch} <= {f"c{i}" for i in range(10, 16)}
-    assert not runner._AHEAD.running and not runner._AHEAD.queued  # dropped with the pool
+    assert not ahead.running and not ahead.queued  # dropped with the pool
     solved = [line.split()[0] for line in _log(log)]
     assert len(set(solved[:9])) == 9 and set(solved[:9]) == {f"c{i}" for i in range(9)}
     for t in first + second:
