@@ -12,6 +12,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
+from coathertz.axisym.edge import edge_basis
 from coathertz.axisym.kernel import INTERFACES, pair_compliance
 from coathertz.axisym.solver import (
     XiRule,
@@ -47,6 +48,10 @@ def single_thread_blas() -> contextlib.AbstractContextManager:
 N_MIN, N_MAX = 32, 160
 
 
+#: Edge functions (``edge=True``): scales from ``h / EDGE_FINE`` up to ``EDGE_COARSE / (2N - 2)^2``.
+EDGE_FINE, EDGE_COARSE = 32.0, 200.0
+
+
 def modes_needed(tau: float, c_modes: float = 9.0) -> int:
     """Legendre modes for thickness ratio ``tau = h_min / a``: ``c_modes / sqrt(tau)`` (the
     boundary layer of width ~h at the contact edge needs ``N^2 ~ a/h``), rounded up to a
@@ -74,6 +79,12 @@ class AxisymMethod:
         from ``h/a`` (:func:`default_modes` with ``c_modes``).
     c_modes
         Constant of the automatic rule ``N = c_modes / sqrt(h/a)``.
+    edge
+        Thin layers (the automatic rule asking for more than ``N_MIN`` modes, ``h/a < 0.08``):
+        ``edge_modes`` Legendre modes enriched with edge functions ``exp((r/a - 1) a/L_j)``, the
+        scales ``L_j`` geometric with ratio ``edge_ratio`` from ``h/32`` up to the resolution of the
+        Legendre modes (:mod:`coathertz.axisym.edge`): the cost and accuracy no longer depend on
+        ``h``. ``False``: Legendre modes only (``N = c_modes / sqrt(h/a)``, capped at ``N_MAX``).
     order, panel
         Gauss--Legendre nodes per panel and uniform panel width of the ``xi = k a`` quadrature.
     decay
@@ -88,6 +99,9 @@ class AxisymMethod:
     interface: str = "bonded"
     n_modes: int | None = None
     c_modes: float = 9.0
+    edge: bool = True
+    edge_modes: int = 32
+    edge_ratio: float = 1.5
     order: int = 8
     panel: float = 4.0
     decay: float = 14.0
@@ -108,6 +122,12 @@ class AxisymMethod:
             raise CoatHertzError(f"n_modes must be None or an integer in [2, 400], got {self.n_modes!r}")
         if not (isinstance(self.c_modes, float | int) and 1.0 <= self.c_modes <= 100.0):
             raise CoatHertzError(f"c_modes must be in [1, 100], got {self.c_modes!r}")
+        if not isinstance(self.edge, bool):
+            raise CoatHertzError(f"edge must be True or False, got {self.edge!r}")
+        if not (isinstance(self.edge_modes, int) and 8 <= self.edge_modes <= 160):
+            raise CoatHertzError(f"edge_modes must be an integer in [8, 160], got {self.edge_modes!r}")
+        if not (isinstance(self.edge_ratio, float | int) and 1.1 <= self.edge_ratio <= 3.0):
+            raise CoatHertzError(f"edge_ratio must be in [1.1, 3], got {self.edge_ratio!r}")
         if not (isinstance(self.order, int) and 4 <= self.order <= 64):
             raise CoatHertzError(f"order must be an integer in [4, 64], got {self.order!r}")
         if not (isinstance(self.panel, float | int) and 0.1 <= self.panel <= 20.0):
@@ -169,9 +189,17 @@ class AxisymMethod:
         rule = self._rule()
         a_init = initial_radius(pc, R, case.W)
         auto = self.n_modes is None
-        n_modes = default_modes(pc.h_min / a_init, self.c_modes) if auto else self.n_modes
-        sol, iters = solve_load(pc, R, case.W, n_modes, rule, self.decay, self.rtol, a_start=a_init)
-        if auto and default_modes(pc.h_min / sol.a, self.c_modes) > n_modes:
+        H_init = pc.h_min / a_init
+        thin = self.edge and bool(pc.terms) and modes_needed(H_init, self.c_modes) > N_MIN
+        beta = None
+        if thin:
+            n_modes = self.edge_modes if auto else self.n_modes
+            beta = edge_basis(H_init, n_modes, float(self.edge_ratio), EDGE_FINE, EDGE_COARSE).array()
+        else:
+            n_modes = default_modes(H_init, self.c_modes) if auto else self.n_modes
+        sol, iters = solve_load(pc, R, case.W, n_modes, rule, self.decay, self.rtol, a_start=a_init,
+                                beta=beta)
+        if auto and not thin and default_modes(pc.h_min / sol.a, self.c_modes) > n_modes:
             # the estimate of a was too large: more modes at the converged radius
             n_modes = default_modes(pc.h_min / sol.a, self.c_modes)
             sol, more = solve_load(pc, R, case.W, n_modes, rule, self.decay, self.rtol, a_start=sol.a)
@@ -182,13 +210,14 @@ class AxisymMethod:
             "r_p0": r_p0,
             "n_modes": n_modes,
             "n_xi": sol.n_xi,
+            "n_edge": int(sol.e.size),
             "iterations": iters,
             "h_over_a": pc.h_min / sol.a if math.isfinite(pc.h_min) else None,  # None: uncoated
             "E_ref": pc.E_ref,
             "interface": interface,
             "settings": dict(self.settings()),
         }
-        if auto and modes_needed(pc.h_min / sol.a, self.c_modes) > 1.5 * N_MAX:
+        if auto and not thin and modes_needed(pc.h_min / sol.a, self.c_modes) > 1.5 * N_MAX:
             msg = (f"h/a = {pc.h_min / sol.a:.3g}: the rule asks for "
                    f"{modes_needed(pc.h_min / sol.a, self.c_modes)} Legendre modes, capped at {N_MAX}; "
                    "a and p0 may be less accurate than 1e-8 (to refine, give more Legendre modes: "
