@@ -64,15 +64,17 @@ def edge_basis(H: float, n_modes: int, ratio: float = 2.0, fine: float = 8.0,
 
 @lru_cache(maxsize=16)
 def graded_rule(n_modes: int, L_min: float) -> tuple[np.ndarray, np.ndarray]:
-    """Composite Gauss rule on ``[0, 1]``, panels halving towards ``x = 1`` down to ``L_min / 4``
-    (``max(48, 2N)`` nodes each: exact for ``P_{2N-2}`` times a smooth factor)."""
+    """Composite Gauss rule on ``[0, 1]`` in ``t = 1 - x`` (nodes ``t``, weights): panels halving
+    towards ``x = 1`` (``t = 0``) down to ``L_min / 4``, ``max(48, 2N)`` nodes each (exact for
+    ``P_{2N-2}`` times a smooth factor). Built in ``t`` so that ``exp(-beta t)`` keeps its relative
+    accuracy for ``beta`` up to ~1e10 (``x - 1`` would lose it)."""
     K = max(1, math.ceil(math.log2(4.0 / L_min)))
-    b = np.concatenate([[0.0], 1.0 - 2.0 ** -np.arange(1, K + 1, dtype=float), [1.0]])
+    b = np.concatenate([[1.0], 2.0 ** -np.arange(1, K + 1, dtype=float), [0.0]])
     z, w = npleg.leggauss(max(48, 2 * n_modes))
-    lo, hi = b[:-1, None], b[1:, None]
-    x = (0.5 * (hi - lo) * z + 0.5 * (hi + lo)).ravel()
-    wx = (0.5 * (hi - lo) * w).ravel()
-    return x, wx
+    lo, hi = b[1:, None], b[:-1, None]
+    t = (0.5 * (hi - lo) * z + 0.5 * (hi + lo)).ravel()
+    wt = (0.5 * (hi - lo) * w).ravel()
+    return t, wt
 
 
 def legendre_signed(n_modes: int, x: np.ndarray) -> np.ndarray:
@@ -83,18 +85,30 @@ def legendre_signed(n_modes: int, x: np.ndarray) -> np.ndarray:
 
 def gram_cross(n_modes: int, beta: np.ndarray) -> np.ndarray:
     """``<phi_m, psi_j> = int_0^1 (-1)^m P_{2m}(x) exp(beta_j (x - 1)) dx``, shape ``(N, J)``."""
-    x, w = graded_rule(n_modes, float(1.0 / beta.max()))
-    E = np.exp(beta[None, :] * (x[:, None] - 1.0))  # (nx, J)
-    return legendre_signed(n_modes, x) @ (E * w[:, None])
+    t, w = graded_rule(n_modes, float(1.0 / beta.max()))
+    E = np.exp(-beta[None, :] * t[:, None])  # (nt, J)
+    return legendre_signed(n_modes, 1.0 - t) @ (E * w[:, None])
 
 
 @lru_cache(maxsize=32)
-def edge_blocks(n_modes: int, beta: tuple[float, ...]) -> tuple[np.ndarray, ...]:
+def edge_blocks(n_modes: int, beta: tuple[float, ...], gram_tol: float) -> tuple[np.ndarray, ...]:
     """The parts of the enriched system that do not depend on ``a`` (cached per basis):
-    ``<phi_m, psi_j>``, ``<psi_i, psi_j>``, ``<psi_j, 1>``, ``<psi_j, x^2>`` and
-    ``int_0^1 psi_j dx``."""
+    ``<phi_m, psi_j>``, ``<psi_i, psi_j>``, ``<psi_j, 1>``, ``<psi_j, x^2>``,
+    ``int_0^1 psi_j dx`` and ``T``: an orthonormal basis (columns, coefficients in the enriched
+    basis) of the numerically independent part of its span, the Gram eigenvectors with
+    eigenvalues above ``gram_tol`` times the largest, scaled by ``lambda^-1/2``."""
     b = np.asarray(beta, dtype=float)
-    out = (gram_cross(n_modes, b), gram_edge(b), rhs_edge(b), edge_integral(b))
+    gc, ge = gram_cross(n_modes, b), gram_edge(b)
+    m = np.arange(n_modes)
+    G = np.zeros((n_modes + b.size, n_modes + b.size))
+    G[m, m] = 1.0 / (4.0 * m + 1.0)
+    G[:n_modes, n_modes:] = gc
+    G[n_modes:, :n_modes] = gc.T
+    G[n_modes:, n_modes:] = ge
+    lam, V = np.linalg.eigh(G)
+    keep = lam > gram_tol * lam[-1]
+    T = V[:, keep] / np.sqrt(lam[keep])
+    out = (gc, ge, rhs_edge(b), edge_integral(b), T)
     for arr in out:
         arr.flags.writeable = False
     return out
@@ -139,13 +153,15 @@ def edge_Q(beta: np.ndarray, e: np.ndarray, rho: np.ndarray) -> np.ndarray:
     out = np.zeros_like(rho)
     if beta.size == 0:
         return out
-    s, ws = _edge_s_rule(float(beta.max()))
+    u, ws = _edge_s_rule(float(beta.max()))  # u = 1 - s
+    s = 1.0 - u
     ok = np.flatnonzero(rho < 1.0)
     r2 = rho[ok, None] ** 2
     x = np.sqrt(r2 + (1.0 - r2) * s[None, :] ** 2)  # (n_rho, n_s)
-    # g_e'(x) = sum_j e_j beta_j exp(-beta_j t), t = 1 - x: each term only where
-    # beta_j t < 37 (exp(-37) < 1e-16), on the nodes sorted by t
-    t = (1.0 - x).ravel()
+    # g_e'(x) = sum_j e_j beta_j exp(-beta_j t), t = 1 - x = (1 - rho^2) u (2 - u) / (1 + x)
+    # (accurate for t << 1): each term only where beta_j t < 37 (exp(-37) < 1e-16), on the nodes
+    # sorted by t
+    t = ((1.0 - r2) * (u * (2.0 - u))[None, :] / (1.0 + x)).ravel()
     order = np.argsort(t, kind="stable")
     ts = t[order]
     acc = np.zeros_like(ts)
@@ -160,8 +176,9 @@ def edge_Q(beta: np.ndarray, e: np.ndarray, rho: np.ndarray) -> np.ndarray:
 
 @lru_cache(maxsize=16)
 def _edge_s_rule(beta_max: float) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss rule in ``u = 1 - s`` on ``[0, 1]``: panels halving towards ``u = 0``."""
     z, w = npleg.leggauss(8)
     K = max(1, math.ceil(math.log2(4.0 * beta_max)))
-    b = np.concatenate([[0.0], 1.0 - 2.0 ** -np.arange(1, K + 1, dtype=float), [1.0]])
-    lo, hi = b[:-1, None], b[1:, None]
+    b = np.concatenate([[1.0], 2.0 ** -np.arange(1, K + 1, dtype=float), [0.0]])
+    lo, hi = b[1:, None], b[:-1, None]
     return (0.5 * (hi - lo) * z + 0.5 * (hi + lo)).ravel(), (0.5 * (hi - lo) * w).ravel()
