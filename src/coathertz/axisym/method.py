@@ -50,6 +50,9 @@ N_MIN, N_MAX = 32, 160
 
 #: Edge functions (``edge=True``): scales from ``h / EDGE_FINE`` up to ``EDGE_COARSE / (2N - 2)^2``.
 EDGE_FINE, EDGE_COARSE = 32.0, 200.0
+#: Edge functions replace the Legendre rule where it would need more modes than this
+#: (``h/a < (c_modes / EDGE_SWITCH)^2``, 0.0088 at the default ``c_modes``).
+EDGE_SWITCH = 96
 #: Below this ``h/a`` the layer changes delta, a, p0 by < 1e-8 and ``N_MIN`` Legendre modes with
 #: the energy edge condition resolve what it changes to ~1e-2 of it (measured: a within 7e-10 and
 #: p0 within 1e-9 of the enriched solution at 1e-7): no edge functions.
@@ -84,11 +87,12 @@ class AxisymMethod:
     c_modes
         Constant of the automatic rule ``N = c_modes / sqrt(h/a)``.
     edge
-        Thin layers (the automatic rule asking for more than ``N_MIN`` modes, ``h/a < 0.08``):
-        ``edge_modes`` Legendre modes enriched with edge functions ``exp((r/a - 1) a/L_j)``, the
-        scales ``L_j`` geometric with ratio ``edge_ratio`` from ``h/32`` up to the resolution of the
-        Legendre modes (:mod:`coathertz.axisym.edge`): the cost and accuracy no longer depend on
-        ``h``. ``False``: Legendre modes only (``N = c_modes / sqrt(h/a)``, capped at ``N_MAX``).
+        Thin layers (the automatic rule asking for more than ``EDGE_SWITCH`` modes:
+        ``1e-7 <= h/a < 0.0088``): ``edge_modes`` Legendre modes (``n_modes`` if given) enriched with edge functions
+        ``exp((r/a - 1) a/L_j)``, the scales ``L_j`` geometric with ratio ``edge_ratio`` from
+        ``h/32`` up to the resolution of the Legendre modes (:mod:`coathertz.axisym.edge`): cost
+        and accuracy no longer depend on ``h``. ``None`` (default): with automatic modes only;
+        ``False``: Legendre modes only (``N = c_modes / sqrt(h/a)``, capped at ``N_MAX``).
     order, panel
         Gauss--Legendre nodes per panel and uniform panel width of the ``xi = k a`` quadrature.
     decay
@@ -103,7 +107,7 @@ class AxisymMethod:
     interface: str = "bonded"
     n_modes: int | None = None
     c_modes: float = 9.0
-    edge: bool = True
+    edge: bool | None = None
     edge_modes: int = 64
     edge_ratio: float = 1.25
     order: int = 8
@@ -126,8 +130,8 @@ class AxisymMethod:
             raise CoatHertzError(f"n_modes must be None or an integer in [2, 400], got {self.n_modes!r}")
         if not (isinstance(self.c_modes, float | int) and 1.0 <= self.c_modes <= 100.0):
             raise CoatHertzError(f"c_modes must be in [1, 100], got {self.c_modes!r}")
-        if not isinstance(self.edge, bool):
-            raise CoatHertzError(f"edge must be True or False, got {self.edge!r}")
+        if not (self.edge is None or isinstance(self.edge, bool)):
+            raise CoatHertzError(f"edge must be None, True or False, got {self.edge!r}")
         if not (isinstance(self.edge_modes, int) and 8 <= self.edge_modes <= 160):
             raise CoatHertzError(f"edge_modes must be an integer in [8, 160], got {self.edge_modes!r}")
         if not (isinstance(self.edge_ratio, float | int) and 1.1 <= self.edge_ratio <= 3.0):
@@ -194,20 +198,30 @@ class AxisymMethod:
         a_init = initial_radius(pc, R, case.W)
         auto = self.n_modes is None
         H_init = pc.h_min / a_init
-        thin = (self.edge and bool(pc.terms) and modes_needed(H_init, self.c_modes) > N_MIN
-                and H_init >= EDGE_H_MIN)
+        use_edge = auto if self.edge is None else self.edge
+        layered = bool(pc.terms)
+        # three regimes (package docstring, "Thin layers"): edge functions where the Legendre rule
+        # would need more than EDGE_SWITCH modes; below EDGE_H_MIN the layer is invisible at 1e-8
+        # and N_MIN modes with the energy edge condition suffice; else Legendre modes, g(1) = 0
+        faint = auto and layered and H_init < EDGE_H_MIN
+        thin = (use_edge and layered and not faint
+                and modes_needed(H_init, self.c_modes) > EDGE_SWITCH)
         beta = None
+        condition = "energy" if (thin or faint) else "point"
         if thin:
             n_modes = self.edge_modes if auto else self.n_modes
             beta = edge_basis(H_init, n_modes, float(self.edge_ratio), EDGE_FINE, EDGE_COARSE).array()
+        elif faint:
+            n_modes = N_MIN
         else:
             n_modes = default_modes(H_init, self.c_modes) if auto else self.n_modes
         sol, iters = solve_load(pc, R, case.W, n_modes, rule, self.decay, self.rtol, a_start=a_init,
-                                beta=beta)
-        if auto and not thin and default_modes(pc.h_min / sol.a, self.c_modes) > n_modes:
+                                beta=beta, edge_condition=condition)
+        if auto and not (thin or faint) and default_modes(pc.h_min / sol.a, self.c_modes) > n_modes:
             # the estimate of a was too large: more modes at the converged radius
             n_modes = default_modes(pc.h_min / sol.a, self.c_modes)
-            sol, more = solve_load(pc, R, case.W, n_modes, rule, self.decay, self.rtol, a_start=sol.a)
+            sol, more = solve_load(pc, R, case.W, n_modes, rule, self.decay, self.rtol, a_start=sol.a,
+                                   edge_condition=condition)
             iters += more
         shape = pressure_shape(sol)
         p0, r_p0 = peak_pressure(pc, sol, shape=shape)
@@ -216,13 +230,14 @@ class AxisymMethod:
             "n_modes": n_modes,
             "n_xi": sol.n_xi,
             "n_edge": int(sol.e.size),
+            "edge_condition": condition,
             "iterations": iters,
             "h_over_a": pc.h_min / sol.a if math.isfinite(pc.h_min) else None,  # None: uncoated
             "E_ref": pc.E_ref,
             "interface": interface,
             "settings": dict(self.settings()),
         }
-        if auto and not thin and modes_needed(pc.h_min / sol.a, self.c_modes) > 1.5 * N_MAX:
+        if auto and not (thin or faint) and modes_needed(pc.h_min / sol.a, self.c_modes) > 1.5 * N_MAX:
             msg = (f"h/a = {pc.h_min / sol.a:.3g}: the rule asks for "
                    f"{modes_needed(pc.h_min / sol.a, self.c_modes)} Legendre modes, capped at {N_MAX}; "
                    "a and p0 may be less accurate than 1e-8 (to refine, give more Legendre modes: "
