@@ -53,10 +53,11 @@ EDGE_FINE, EDGE_COARSE = 32.0, 200.0
 #: Edge functions replace the Legendre rule where it would need more modes than this
 #: (``h/a < (c_modes / EDGE_SWITCH)^2``, 0.0088 at the default ``c_modes``).
 EDGE_SWITCH = 96
-#: Below this ``h/a`` the layer changes delta, a, p0 by < 1e-8 and ``N_MIN`` Legendre modes with
-#: the energy edge condition resolve what it changes to ~1e-2 of it (measured: a within 7e-10 and
-#: p0 within 1e-9 of the enriched solution at 1e-7): no edge functions.
-EDGE_H_MIN = 1e-7
+#: Below this ``h/a`` no edge functions: ``N_MIN`` Legendre modes with the energy edge condition
+#: leave ``a`` off by ~0.17 h/a (measured from 1e-7 to 1e-9 against the first-order trend of the
+#: enriched solutions: 8.5e-9 at 5e-8, 1.8e-9 at 1e-8), and the finest edge functions lose
+#: accuracy in p0 (5e-9 at 1e-8).
+EDGE_H_MIN = 2e-8
 
 
 def modes_needed(tau: float, c_modes: float = 9.0) -> int:
@@ -88,11 +89,15 @@ class AxisymMethod:
         Constant of the automatic rule ``N = c_modes / sqrt(h/a)``.
     edge
         Thin layers (the automatic rule asking for more than ``EDGE_SWITCH`` modes:
-        ``1e-7 <= h/a < 0.0088``): ``edge_modes`` Legendre modes (``n_modes`` if given) enriched with edge functions
-        ``exp((r/a - 1) a/L_j)``, the scales ``L_j`` geometric with ratio ``edge_ratio`` from
-        ``h/32`` up to the resolution of the Legendre modes (:mod:`coathertz.axisym.edge`): cost
+        ``2e-8 <= h/a < 0.0088``): ``edge_modes`` Legendre modes (``n_modes`` if given)
+        enriched with edge functions ``exp((r/a - 1) a/L_j)``, the scales ``L_j`` geometric with
+        ratio ``edge_ratio`` from ``h/32`` up to the resolution of the Legendre modes
+        (:mod:`coathertz.axisym.edge`), and the smooth edge as stationarity of the load
+        (``edge_condition="energy"`` of :func:`~coathertz.axisym.solver.solve_at_radius`): cost
         and accuracy no longer depend on ``h``. ``None`` (default): with automatic modes only;
         ``False``: Legendre modes only (``N = c_modes / sqrt(h/a)``, capped at ``N_MAX``).
+    edge_modes, edge_ratio
+        Legendre modes and scale ratio of the edge functions with ``edge``.
     order, panel
         Gauss--Legendre nodes per panel and uniform panel width of the ``xi = k a`` quadrature.
     decay
@@ -127,7 +132,8 @@ class AxisymMethod:
         if self.interface not in INTERFACES:
             raise CoatHertzError(f"interface must be one of {INTERFACES}, got {self.interface!r}")
         if self.n_modes is not None and not (isinstance(self.n_modes, int) and 2 <= self.n_modes <= 400):
-            raise CoatHertzError(f"n_modes must be None or an integer in [2, 400], got {self.n_modes!r}")
+            raise CoatHertzError(f"axisym: n_modes (--modes) must be None or an integer in [2, 400], "
+                                 f"got {self.n_modes!r}")
         if not (isinstance(self.c_modes, float | int) and 1.0 <= self.c_modes <= 100.0):
             raise CoatHertzError(f"c_modes must be in [1, 100], got {self.c_modes!r}")
         if not (self.edge is None or isinstance(self.edge, bool)):

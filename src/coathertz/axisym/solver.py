@@ -28,6 +28,10 @@ from coathertz.axisym.bessel import spherical_jn_all
 from coathertz.axisym.kernel import PairCompliance
 from coathertz.errors import ConvergenceError
 
+#: What a user can change when the solver fails (the method's own settings, not another method's).
+MODES_HINT = ("change the Legendre modes (--modes N on the command line, n_modes=N in Python, "
+              "2 to 400) or the edge functions (edge=, edge_modes=, edge_ratio= in Python)")
+
 # --- xi quadrature ------------------------------------------------------------------------------
 
 
@@ -265,6 +269,47 @@ def _tail_bilinear(fn, n_modes: int, beta: np.ndarray, X0: float, X1: float,
     return A + osc.real
 
 
+_CONST: dict[tuple, np.ndarray] = {}
+
+
+def constant_weight_error(n_modes: int, beta: np.ndarray, rule: XiRule) -> np.ndarray:
+    """The xi rule's error for a constant weight, ``Q(Phi_p Phi_q) - int_0^inf Phi_p Phi_q dxi``
+    (direct rule to ``X0`` plus the closed-form tail to ``1e12 X0``), with the exact value
+    ``(pi/2) <phi_p, phi_q>`` (Parseval; ``pi / (2 (4m+1)) delta_mn`` for Legendre modes).
+
+    ``M`` is ~``M(0)`` wherever the rule errs most (small ``xi``, where ``j_{2m} j_{2n}`` are
+    largest), and the identity part of the Galerkin matrix cancels ``M(0) = -1`` on a rigid base:
+    there the rule's relative error (~1e-9 at 8 nodes per panel) became a 3e-7 error in delta for
+    a thin incompressible layer. :func:`solve_at_radius` subtracts ``M(0)`` times this matrix
+    (cached per basis; it does not depend on ``a``)."""
+    key = (n_modes, tuple(float(b) for b in beta), rule)
+    C = _CONST.get(key)
+    if C is None:
+        X0 = direct_end(n_modes, rule)
+        xi, w, J = bessel_table(n_modes, X0, rule)
+        m = np.arange(n_modes)
+        if beta.size:
+            from coathertz.axisym import edge as E
+
+            B = np.concatenate([J, E.psi_hat(beta, xi)])
+            gc, ge = E.gram_cross(n_modes, beta), E.gram_edge(beta)
+            gram = np.zeros((n_modes + beta.size,) * 2)
+            gram[:n_modes, n_modes:] = gc
+            gram[n_modes:, :n_modes] = gc.T
+            gram[n_modes:, n_modes:] = ge
+        else:
+            B = J
+            gram = np.zeros((n_modes, n_modes))
+        gram[m, m] = 1.0 / (4.0 * m + 1.0)
+        T_inf = _tail_bilinear(np.ones_like, n_modes, beta, X0, 1e12 * X0)
+        C = (B * w) @ B.T + T_inf - 0.5 * math.pi * gram
+        C.flags.writeable = False
+        _CONST[key] = C
+        if len(_CONST) > 16:
+            _CONST.pop(next(iter(_CONST)))
+    return C
+
+
 def solve_at_radius(
     pc: PairCompliance, R: float, a: float, n_modes: int, rule: XiRule, decay: float = 24.0,
     beta: np.ndarray | None = None, edge_condition: str = "point",
@@ -277,15 +322,16 @@ def solve_at_radius(
         Decay rates of edge functions enriching the Legendre basis (thin layers,
         :mod:`coathertz.axisym.edge`); ``None``: Legendre modes only.
     edge_condition
-        ``energy`` (what :class:`~coathertz.axisym.AxisymMethod` uses): the smooth edge as stationarity of the load at fixed ``delta``,
-        ``dW/da|_delta = 0``, with ``W = 2 E_ref a (delta P_1 - q P_12)`` built from the
-        Galerkin energies ``P_1 = <1, g_1>``, ``P_12 = <1, g_2> = <x^2, g_1>`` (``g_1``, ``g_2``: the
-        solutions for right-hand sides ``1`` and ``x^2``) and their ``a``-derivatives
-        (``d<f, L^-1 f'>/da = -<g, L' g'>``, exact for the Galerkin system): these are variational,
-        their error is quadratic in that of ``g``, so they stay accurate when a thin layer's edge
-        boundary layer is not resolved (measured, B4C example at ``H = 1e-3``: 1e-8 at 48 modes
-        against 4e-6 for ``g(1) = 0``). ``point`` (default, exact ``g(1) = 0`` for readers of ``c``):
-        ``g(1) = 0``, linear in ``delta``.
+        ``energy`` (what :class:`~coathertz.axisym.AxisymMethod` uses for thin layers): the
+        smooth edge as stationarity of the load at fixed ``delta``, ``dW/da|_delta = 0``, with
+        ``W = 2 E_ref a (delta P_1 - q P_12)`` built from the Galerkin energies
+        ``P_1 = <1, g_1>``, ``P_12 = <1, g_2> = <x^2, g_1>`` (``g_1``, ``g_2``: the solutions for
+        right-hand sides ``1`` and ``x^2``) and their ``a``-derivatives
+        (``d<f, L^-1 f'>/da = -<g, L' g'>``, exact for the Galerkin system): these are
+        variational, their error is quadratic in that of ``g``, so they stay accurate when a thin
+        layer's edge boundary layer is not resolved (measured, B4C example at ``H = 1e-3``: 1e-8
+        at 48 modes against 4e-6 for ``g(1) = 0``). ``point`` (default; exact ``g(1) = 0`` for
+        readers of ``c``): ``g(1) = 0``, linear in ``delta``.
     """
     if edge_condition not in ("energy", "point"):
         raise ValueError(f"edge_condition must be 'energy' or 'point', got {edge_condition!r}")
@@ -318,6 +364,8 @@ def solve_at_radius(
         A = (B * (w * pc.M(xi / a))) @ B.T
         if X > X0:  # thin layer: the rest in closed form (cost independent of h)
             A = A + _tail_bilinear(lambda x: pc.M(x / a), N, beta, X0, X)
+            # the rule's error on the constant part M(0) (constant_weight_error)
+            A = A - float(pc.M(np.array([1e-12 / pc.h_min]))[0]) * constant_weight_error(N, beta, rule)
         n_xi = xi.size
     G = G + (2.0 / math.pi) * A if pc.terms else G
     if nJ:
@@ -331,7 +379,8 @@ def solve_at_radius(
     if edge_condition == "point" or not pc.terms:
         s1, s2 = float(ends @ D[:, 0]), float(ends @ D[:, 1])  # g_1(1), g_2(1)
         if s1 <= 0:
-            raise ConvergenceError(f"axisym: no smooth-edge solution at a = {a:.6g} m (g1(1) = {s1:.3g})")
+            raise ConvergenceError(f"axisym: no smooth-edge solution at a = {a:.6g} m (g1(1) = {s1:.3g}); "
+                                   f"{MODES_HINT}")
         delta = q * s2 / s1  # g(1) = delta g1(1) - q g2(1) = 0
     else:
         # a dP/da = -(2/pi) v^T (a dA/da) v, a dA/da = int (-dM/dlog k) Phi Phi dxi
@@ -344,7 +393,7 @@ def solve_at_radius(
         den = P1 + dP1
         if den <= 0:
             raise ConvergenceError(f"axisym: no smooth-edge solution at a = {a:.6g} m "
-                                   f"(d(a P_1)/da = {den:.3g})")
+                                   f"(d(a P_1)/da = {den:.3g}); {MODES_HINT}")
         # W(a; delta) = 2 E_ref (delta a P1 - a^3 P12 / R); dW/da = 0 at fixed delta
         delta = q * (3.0 * P12 + dP12) / den
     v = delta * D[:, 0] - q * D[:, 1]
@@ -444,7 +493,8 @@ def solve_load(
         x1 = x2
         f1, s1 = f(x1)
     raise ConvergenceError(
-        f"axisym: load iteration did not converge in {max_iter} steps (|log W err| = {abs(f1):.2e})"
+        f"axisym: load iteration did not converge in {max_iter} steps (|log W err| = {abs(f1):.2e}); "
+        f"{MODES_HINT}"
     )
 
 
