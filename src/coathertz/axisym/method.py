@@ -163,10 +163,12 @@ class AxisymMethod:
 
     @classmethod
     def refined_settings(cls, resolution: str) -> dict[str, Any]:
-        """Twice the Legendre modes and four more ``xi`` nodes per panel: a study re-solves the
-        cases it marks ``refine`` with these, and the difference is this reference's numerical
-        uncertainty there (a convergence estimate, about 1e-9; see the package docstring)."""
-        return {**cls.settings_for(resolution), "c_modes": 2.0 * cls.c_modes, "order": cls.order + 4}
+        """Twice the Legendre modes, four more ``xi`` nodes per panel and, for thin layers, 96
+        Legendre modes with edge functions at ratio 1.15: a study re-solves the cases it marks
+        ``refine`` with these, and the difference is this reference's numerical uncertainty there
+        (a convergence estimate, about 1e-9; see the package docstring)."""
+        return {**cls.settings_for(resolution), "c_modes": 2.0 * cls.c_modes, "order": cls.order + 4,
+                "edge_modes": 96, "edge_ratio": 1.15}
 
     # Method protocol ---------------------------------------------------------------------------
     def settings(self) -> Mapping[str, Any]:
