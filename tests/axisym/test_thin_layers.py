@@ -187,10 +187,11 @@ def test_self_convergence_at_h_1e5(E_ratio):
 
 def test_thin_limit_is_substrate_hertz_and_continuous_across_regimes():
     """(value / substrate Hertz - 1) / H tends to a line in log H (first order in H with an
-    H log H term from the edge boundary layer; O(H^2) < 1e-12 below 1e-6): fitted on 1e-4..1e-6
-    (edge functions), the solutions from 1e-7 to 1e-9 (edge functions, then Legendre modes only
-    below 2e-8) stay on it within 1e-8 relative (deviations and slope in the message)."""
-    Hs = np.array([1e-4, 1e-5, 1e-6, 1e-7, 3e-8, 1e-8, 1e-9])
+    H log H term from the edge boundary layer; the O(H^2) terms are < 1e-10 below 1e-5): fitted
+    from 1e-5 to 1e-9 (residuals weighted by H), across both switches (edge functions, then Legendre modes only below
+    2e-8), every solution is within 1e-8 relative of the line (deviations and slope in the
+    message; measured at most ~1e-9)."""
+    Hs = np.array([1e-5, 1e-6, 1e-7, 3e-8, 1e-8, 1e-9])
     for q, ref in (("delta", "delta0s"), ("a", "a0s"), ("p0", "p0s")):
         d = []
         for H in Hs:
@@ -198,12 +199,11 @@ def test_thin_limit_is_substrate_hertz_and_continuous_across_regimes():
             r = AxisymMethod(keep_fields=False).solve(case)
             d.append(getattr(r, q) / getattr(case, ref) - 1.0)
         scaled = np.array(d) / Hs
-        fit = Hs >= 1e-6
-        c = np.polyfit(np.log10(Hs[fit]), scaled[fit], 1)
+        c = np.polyfit(np.log10(Hs), scaled, 1, w=Hs / Hs.max())  # weighted like dev
         dev = np.abs(scaled - np.polyval(c, np.log10(Hs))) * Hs  # relative error in the quantity
         msg = (f"{q}: (value/Hertz - 1)/H = {[f'{x:.4f}' for x in scaled]} at H = {list(Hs)}; "
                f"slope {c[0]:.4f} per decade; deviations from the line {[f'{x:.1e}' for x in dev]}")
-        assert np.max(dev[~fit]) < 1e-8 and np.max(dev[fit]) < 1e-8, msg
+        assert np.max(dev) < 1e-8 and abs(np.mean(scaled)) > 0.1, msg
 
 
 # --- rigid substrate, stacks --------------------------------------------------------------------

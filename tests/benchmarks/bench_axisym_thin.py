@@ -107,7 +107,8 @@ def stacks(n_cases: int) -> None:
         for _ in range(n_cases):
             Es = 200e9 * 10.0 ** rng.uniform(-1.0, 1.0, n_layers)
             Hs = 10.0 ** rng.uniform(-2.0, 0.5, n_layers)  # thinnest >= 0.01 a0
-            layers = tuple(Layer(Material(float(E), 0.3), float(H) * a0) for E, H in zip(Es, Hs, strict=True))
+            layers = tuple(Layer(Material(float(E), 0.3), float(H) * a0)
+                           for E, H in zip(Es, Hs, strict=True))
             cases.append(ContactCase(Body.rigid_sphere(10e-3), Body(STEEL, layers=layers), 1.0))
         m.solve_many(cases)  # warm
         t = []
