@@ -188,9 +188,9 @@ def test_self_convergence_at_h_1e5(E_ratio):
 def test_thin_limit_is_substrate_hertz_and_continuous_across_regimes():
     """(value / substrate Hertz - 1) / H tends to a line in log H (first order in H with an
     H log H term from the edge boundary layer; the O(H^2) terms are < 1e-10 below 1e-5): fitted
-    from 1e-5 to 1e-9 (residuals weighted by H), across both switches (edge functions, then Legendre modes only below
-    2e-8), every solution is within 1e-8 relative of the line (deviations and slope in the
-    message; measured at most ~1e-9)."""
+    from 1e-5 to 1e-9 (residuals weighted by H), across both switches (edge functions, then
+    Legendre modes only below 2e-8), every solution is within 1e-8 relative of the line
+    (deviations and slope in the message; measured at most ~2e-9)."""
     Hs = np.array([1e-5, 1e-6, 1e-7, 3e-8, 1e-8, 1e-9])
     for q, ref in (("delta", "delta0s"), ("a", "a0s"), ("p0", "p0s")):
         d = []

@@ -94,7 +94,8 @@ def single_coatings() -> None:
                   f"median {np.median(t) * 1e3:5.1f} ms CPU (max {np.max(t) * 1e3:5.1f}), "
                   f"cold peak {peak:5.1f} MiB; vs refined: "
                   + ", ".join(f"{q} {e:.1e}" for q, e in err.items()))
-    print("  largest difference to the refined solves: " + ", ".join(f"{q} {v:.1e}" for q, v in worst.items()))
+    print("  largest difference to the refined solves: "
+          + ", ".join(f"{q} {v:.1e}" for q, v in worst.items()))
 
 
 def stacks(n_cases: int) -> None:
