@@ -232,7 +232,13 @@ class AxisymMethod:
                                    edge_condition=condition)
             iters += more
         shape = pressure_shape(sol)
-        p0, r_p0 = peak_pressure(pc, sol, shape=shape)
+        rho_in = 0.5 * (1.0 - np.cos(np.linspace(0.0, math.pi, 121)))
+        p_in = None
+        if self.keep_fields:
+            p_in = pressure(pc, sol, rho_in, shape)
+        # with edge functions each pressure value costs a quadrature: the profile is the scan
+        scan = (rho_in, p_in) if (p_in is not None and sol.e.size) else None
+        p0, r_p0 = peak_pressure(pc, sol, shape=shape, scan=scan)
         meta: dict[str, Any] = {
             "r_p0": r_p0,
             "n_modes": n_modes,
@@ -255,10 +261,9 @@ class AxisymMethod:
         fields: dict[str, np.ndarray] = {}
         if self.keep_fields:
             x_end = direct_end(n_modes, rule)
-            rho_in = 0.5 * (1.0 - np.cos(np.linspace(0.0, math.pi, 121)))
             rho = np.concatenate([rho_in, np.linspace(1.0, 3.0, 25)[1:]])
             p = np.zeros_like(rho)
-            p[: rho_in.size] = pressure(pc, sol, rho_in, shape)
+            p[: rho_in.size] = p_in
             fields = {
                 "r": rho * sol.a,
                 "pressure": p,

@@ -567,13 +567,16 @@ def pressure(pc: PairCompliance, sol: RadiusSolution, rho: np.ndarray,
 
 
 def peak_pressure(pc: PairCompliance, sol: RadiusSolution, n_scan: int | None = None,
-                  shape: np.ndarray | None = None) -> tuple[float, float]:
+                  shape: np.ndarray | None = None,
+                  scan: tuple[np.ndarray, np.ndarray] | None = None) -> tuple[float, float]:
     """Maximum of ``p(r)`` and its radius ``r_p0`` [m] (0.0 on the axis).
 
     A scan on ``n_scan`` points (clustered at both ends; default 129, 49 with edge functions,
     whose pressure costs a quadrature per point) brackets the maximum; six zooms of 9 points
     shrink the bracket by 4 each, and a parabola through the best three points gives the peak
-    (``p`` is smooth in ``rho``; the value is exact to ~1e-13 relative).
+    (``p`` is smooth in ``rho``; the value is exact to ~1e-13 relative). ``scan``: ``(rho, p)``
+    already computed (increasing ``rho`` from 0 to 1, e.g. the profile of the fields) in place of
+    the scan.
     """
     if n_scan is None:
         n_scan = 49 if sol.e.size else 129
@@ -583,8 +586,12 @@ def peak_pressure(pc: PairCompliance, sol: RadiusSolution, n_scan: int | None = 
     def pv(r: np.ndarray) -> np.ndarray:
         return pressure(pc, sol, r, shape)
 
-    rho = 0.5 * (1.0 - np.cos(np.linspace(0.0, math.pi, n_scan)))
-    p = pv(rho)
+    if scan is not None:
+        rho, p = (np.asarray(v, dtype=float) for v in scan)
+        n_scan = rho.size
+    else:
+        rho = 0.5 * (1.0 - np.cos(np.linspace(0.0, math.pi, n_scan)))
+        p = pv(rho)
     i = int(np.argmax(p))
     lo, hi = rho[max(i - 1, 0)], rho[min(i + 1, n_scan - 1)]
     best_r, best_p = rho[i], p[i]
