@@ -2,8 +2,10 @@
 
 scikit-fem, Q2 quadrilaterals (Taylor-Hood Q2-Q1 for nu >= 0.45), frictionless node-to-rigid
 paraboloid contact under load control (or an elastic indenter meshed as a second half-space);
-bonded or frictionless coating/substrate interface. Independent of :mod:`coathertz.fft`
-(imports only the shared case model). Modules, one job each:
+bonded or frictionless coating/substrate interface; a layer stack (``Body.layers``) with each
+interface bonded or frictionless (elastic only). Independent of :mod:`coathertz.fft`,
+:mod:`coathertz.axisym` and :mod:`coathertz.stack` (imports only the shared case model).
+Modules, one job each:
 
 ``mesh`` graded tensor-product mesh; ``forms`` axisymmetric weak forms; ``affine`` the
 stiffness of the rectangles of that mesh without skfem's quadrature basis; ``material`` laws at

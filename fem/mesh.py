@@ -11,6 +11,14 @@ and the mesh is conforming:
   ``n_coat`` even for ``H = 0.01``), then the spacing relaxes to ``s0`` down to ``t_fine``,
   then grows geometrically to ``D``.
 
+A *stack* of layers (``h`` a sequence of thicknesses, top first) puts a line of element edges at
+every interface ``z = -(h_1 + ... + h_i)``; its depth grid equidistributes a target spacing
+(:func:`stack_depths`) built from the same rules: at least ``n_coat`` elements through every
+layer, ``min(s0, edge h_i / n_a)`` in a layer that starts inside the fine zone, ``s0`` in the
+fine zone, each relaxing by ``growth - 1`` per unit of distance. The radial contact-edge band
+follows the top layer's thickness. One layer (``h`` a number) is the single-coating mesh above,
+point for point.
+
 ``a_ref`` is the predicted contact radius; :func:`coathertz.fem.method.FEMMethod.solve`
 rebuilds the mesh around the computed radius if that falls outside the fine zone.
 Elements are 4-node quadrilaterals (``MeshQuad``) to be used with the 9-node Q2 element.
@@ -18,7 +26,9 @@ Elements are 4-node quadrilaterals (``MeshQuad``) to be used with the 9-node Q2 
 
 from __future__ import annotations
 
+import itertools
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -126,6 +136,13 @@ def _join(*parts: np.ndarray) -> np.ndarray:
     return out
 
 
+def thicknesses(h: float | Sequence[float]) -> tuple[float, ...]:
+    """Layer thicknesses, top first: ``h`` a number (one coating; ``0``: none) or a sequence."""
+    if isinstance(h, int | float | np.integer | np.floating):
+        return (float(h),) if h > 0 else ()
+    return tuple(float(x) for x in h)
+
+
 @dataclass(frozen=True)
 class LayeredMesh:
     """The mesh with its geometry: regions, fine zone and outer boundary.
@@ -135,9 +152,10 @@ class LayeredMesh:
     mesh
         The scikit-fem quadrilateral mesh, coordinates ``(r, z)``.
     coating, substrate
-        Element indices of the two regions (``coating`` empty for an uncoated body).
+        Element indices of the two regions (``coating`` empty for an uncoated body; for a stack,
+        all its layers).
     a_ref, h, L, D
-        Reference contact radius, coating thickness, domain radius and depth [m].
+        Reference contact radius, coating (stack) thickness, domain radius and depth [m].
     r_fine
         Radius of the fine zone [m]: contact candidates live at ``r <= r_fine``.
     rigid_base
@@ -146,6 +164,14 @@ class LayeredMesh:
         ``bonded`` or ``frictionless`` coating/substrate interface. Frictionless with an elastic
         substrate: the two regions have their own nodes on ``z = -h`` (tied in ``u_z`` by
         :class:`coathertz.fem.model.FEModel`); on a rigid base only ``u_z = 0`` is imposed there.
+        For a stack: ``frictionless`` if any of its interfaces is (see ``interfaces``).
+    layers
+        Element indices of each layer, top first (one entry for a single coating).
+    depths
+        Depth of each layer's lower face [m], top first (``depths[-1] == h``).
+    interfaces
+        How each layer's lower face is joined (``bonded`` or ``frictionless``), top first. Every
+        frictionless interface over an elastic body has two node sets, as above.
     """
 
     mesh: MeshQuad
@@ -159,10 +185,24 @@ class LayeredMesh:
     rigid_base: bool
     spec: MeshSpec
     interface: str = "bonded"
+    layers: tuple[np.ndarray, ...] = ()
+    depths: tuple[float, ...] = ()
+    interfaces: tuple[str, ...] = ()
 
     @property
     def n_elements(self) -> int:
         return int(self.mesh.t.shape[1])
+
+    @property
+    def bottom_interface(self) -> str:
+        """How the lowest layer rests on the substrate (``bonded`` for an uncoated body)."""
+        return self.interfaces[-1] if self.interfaces else self.interface
+
+    def split_depths(self) -> tuple[float, ...]:
+        """Depths of the frictionless interfaces with two node sets (not one on a rigid base)."""
+        n = len(self.depths)
+        return tuple(d for i, (d, f) in enumerate(zip(self.depths, self.interfaces, strict=True))
+                     if f == "frictionless" and not (self.rigid_base and i == n - 1))
 
 
 def edge_band(a_ref: float, h: float, spec: MeshSpec) -> tuple[float, float]:
@@ -198,12 +238,20 @@ def check_spacing(x: np.ndarray, what: str) -> None:
         )
 
 
-def _check_inputs(a_ref: float, h: float, rigid_base: bool) -> None:
+def _check_inputs(a_ref: float, h: float | Sequence[float], rigid_base: bool) -> None:
     if not (a_ref > 0 and math.isfinite(a_ref)):
         raise CoatHertzError(f"a_ref must be a finite length > 0, got {a_ref!r}")
-    if not (h >= 0 and math.isfinite(h)):
-        raise CoatHertzError(f"h must be a finite length >= 0, got {h!r}")
-    if rigid_base and h <= 0:
+    if isinstance(h, int | float | np.integer | np.floating):
+        if not (h >= 0 and math.isfinite(h)):
+            raise CoatHertzError(f"h must be a finite length >= 0, got {h!r}")
+    else:
+        hs = list(h)
+        if not hs:
+            raise CoatHertzError("h: a layer stack needs at least one layer thickness, got none")
+        for i, hi in enumerate(hs, 1):
+            if not (hi > 0 and math.isfinite(hi)):
+                raise CoatHertzError(f"h: layer {i} thickness must be a finite length > 0 [m], got {hi!r}")
+    if rigid_base and not thicknesses(h):
         raise CoatHertzError("a rigid substrate needs a coating of thickness h > 0")
 
 
@@ -231,6 +279,7 @@ class MeshSize:
     n_t: int
     n_t_coating: int
     exact: bool = True
+    n_t_layers: tuple[int, ...] = ()  # elements through each layer of a stack (top first)
 
     @property
     def elements(self) -> int:
@@ -241,40 +290,48 @@ class MeshSize:
         """Q2 vector dofs: two per node of the ``(2 n_r + 1) x (2 n_t + 1)`` node grid."""
         return 2 * (2 * self.n_r + 1) * (2 * self.n_t + 1)
 
-    def pressure_dofs(self, coating_mixed: bool, substrate_mixed: bool) -> int:
-        """Q1 pressure dofs of the mixed regions (one node set per region)."""
+    def pressure_dofs(self, coating_mixed: bool | Sequence[bool], substrate_mixed: bool) -> int:
+        """Q1 pressure dofs of the mixed regions (one node set per region); ``coating_mixed``
+        one flag per layer of a stack (top first) or one for the coating."""
         n = 0
-        if coating_mixed:
+        if not isinstance(coating_mixed, bool | np.bool_):
+            for mixed, n_t in zip(coating_mixed, self.n_t_layers, strict=True):
+                n += (self.n_r + 1) * (n_t + 1) if mixed else 0
+        elif coating_mixed:
             n += (self.n_r + 1) * (self.n_t_coating + 1)
         if substrate_mixed:
             n += (self.n_r + 1) * (self.n_t - self.n_t_coating + 1)
         return n
 
 
-def mesh_size(a_ref: float, h: float, spec: MeshSpec, rigid_base: bool = False) -> MeshSize:
+def mesh_size(a_ref: float, h: float | Sequence[float], spec: MeshSpec, rigid_base: bool = False) -> MeshSize:
     """Element counts of :func:`build_mesh` without building the mesh (and without building the
     grids when the edge band alone exceeds :data:`BAND_CAP`): the input of the memory guard."""
     _check_inputs(a_ref, h, rigid_base)
-    _, _, n_band = _band(a_ref, h, spec)
+    hs = thicknesses(h)
+    _, _, n_band = _band(a_ref, hs[0] if hs else 0.0, spec)
     if n_band > BAND_CAP:
-        return MeshSize(n_band, spec.n_coat, spec.n_coat, exact=False)
+        n = len(hs)
+        return MeshSize(n_band, spec.n_coat * max(n, 1), spec.n_coat * n, exact=False,
+                        n_t_layers=(spec.n_coat,) * n)
     r, t = grids(a_ref, h, spec, rigid_base)
-    n_tc = int(np.sum(t[1:] <= h * (1 + 1e-12))) if h > 0 else 0
-    return MeshSize(len(r) - 1, len(t) - 1, n_tc)
+    depths = np.cumsum(hs)
+    below = [int(np.sum(t[1:] <= d * (1 + 1e-12))) for d in depths]
+    per_layer = tuple(int(x) for x in np.diff([0, *below]))
+    return MeshSize(len(r) - 1, len(t) - 1, below[-1] if below else 0, n_t_layers=per_layer)
 
 
-def grids(a_ref: float, h: float, spec: MeshSpec, rigid_base: bool = False) -> tuple[np.ndarray, np.ndarray]:
-    """The radial grid ``r`` and the depth grid ``t = -z`` of :func:`build_mesh` (see module docstring)."""
-    _check_inputs(a_ref, h, rigid_base)
+def _radial_grid(a_ref: float, h_edge: float, L: float, spec: MeshSpec) -> np.ndarray:
+    """The radial grid: the fine zone (with the contact-edge band of a top layer ``h_edge``
+    thick), then geometric growth to ``L``."""
     s0 = a_ref / spec.n_a
     q = spec.growth
-    L = spec.L * max(a_ref, h)
     r_f = spec.r_fine * a_ref
-    s_e, w, n_band = _band(a_ref, h, spec)
+    s_e, w, n_band = _band(a_ref, h_edge, spec)
     if n_band > BAND_CAP:
         raise CoatHertzError(
-            f"mesh generator: the contact-edge band of a coating with h/a_ref = {h / a_ref:.3g} would need"
-            f" {n_band} elements across (> {BAND_CAP}); check the size first with mesh_size()"
+            f"mesh generator: the contact-edge band of a coating with h/a_ref = {h_edge / a_ref:.3g} would"
+            f" need {n_band} elements across (> {BAND_CAP}); check the size first with mesh_size()"
         )
     if s_e < s0:
         # thin coating: the pressure edge has a boundary layer of width ~h; resolve it with
@@ -285,7 +342,77 @@ def grids(a_ref: float, h: float, spec: MeshSpec, rigid_base: bool = False) -> t
         r_fine = _join(left, band, right)
     else:
         r_fine = np.linspace(0.0, r_f, round(r_f / s0) + 1)
-    r = _join(r_fine, graded(r_f, L, (r_fine[-1] - r_fine[-2]) * q, q))
+    return _join(r_fine, graded(r_f, L, (r_fine[-1] - r_fine[-2]) * q, q))
+
+
+def _equidistribute(u: float, v: float, size, size_at, m: int = 16) -> np.ndarray:
+    """Points from ``u`` to ``v`` (both included) equidistributing the target spacing ``size(t)``
+    (``size_at``: the same for one float): ``n = ceil(int_u^v dt / size)`` intervals of equal
+    ``int dt / size``, so every spacing is at most ``size``; the integral by the trapezoidal rule
+    on ``m`` sub-steps per target spacing."""
+    x = [u]
+    while x[-1] < v:
+        x.append(min(v, x[-1] + size_at(x[-1]) / m))
+    x = np.array(x)
+    f = 1.0 / size(x)
+    F = np.concatenate([[0.0], np.cumsum(0.5 * (f[1:] + f[:-1]) * np.diff(x))])
+    n = max(1, math.ceil(F[-1] * (1.0 - 1e-9)))
+    t = np.interp(np.linspace(0.0, F[-1], n + 1), F, x)
+    t[0], t[-1] = u, v
+    return t
+
+
+def stack_depths(a_ref: float, hs: Sequence[float], spec: MeshSpec, rigid_base: bool = False) -> np.ndarray:
+    """Depth grid ``t = -z`` of a stack of layers ``hs`` (top first, two or more): every interface
+    is a grid point, and each segment between them equidistributes the target spacing
+
+    ``S(t) = min over rules of (c + (growth - 1) * distance(t, where the rule holds))``:
+    ``c = s0`` on the fine zone ``t <= t_fine a_ref``; ``c = h_i / n_coat`` through layer ``i``;
+    ``c = min(s0, edge h_i / n_a)`` on the part of layer ``i`` inside the fine zone (the single
+    coating's rules, :func:`grids`). The ``growth - 1`` slope is geometric growth by ``growth``
+    per element, as in :func:`graded`."""
+    s0 = a_ref / spec.n_a
+    q = spec.growth
+    t_f = spec.t_fine * a_ref
+    d = np.concatenate([[0.0], np.cumsum(hs)])
+    D = d[-1] if rigid_base else spec.L * max(a_ref, d[-1])
+    rules = [(0.0, t_f, s0)]  # (top, bottom, c): spacing c on [top, bottom], relaxing outside
+    for i, h_i in enumerate(hs):
+        rules.append((d[i], d[i + 1], h_i / spec.n_coat))
+        if d[i] < t_f:
+            rules.append((d[i], min(d[i + 1], t_f), min(s0, spec.edge * h_i / spec.n_a)))
+
+    def size(t: np.ndarray) -> np.ndarray:
+        out = np.full(t.shape, np.inf)
+        for lo, hi, c in rules:
+            out = np.minimum(out, c + (q - 1.0) * np.maximum(0.0, np.maximum(lo - t, t - hi)))
+        return out
+
+    def size_at(t: float) -> float:
+        return min(c + (q - 1.0) * max(0.0, lo - t, t - hi) for lo, hi, c in rules)
+
+    breaks = [*d, D] if D > d[-1] else list(d)
+    return _join(*(_equidistribute(u, v, size, size_at) for u, v in itertools.pairwise(breaks)))
+
+
+def grids(
+    a_ref: float, h: float | Sequence[float], spec: MeshSpec, rigid_base: bool = False
+) -> tuple[np.ndarray, np.ndarray]:
+    """The radial grid ``r`` and the depth grid ``t = -z`` of :func:`build_mesh` (see module
+    docstring); ``h`` a coating thickness or a stack's layer thicknesses (top first)."""
+    _check_inputs(a_ref, h, rigid_base)
+    hs = thicknesses(h)
+    if len(hs) > 1:
+        r = _radial_grid(a_ref, hs[0], spec.L * max(a_ref, sum(hs)), spec)
+        t = stack_depths(a_ref, hs, spec, rigid_base)
+        check_spacing(r, "r")
+        check_spacing(t, "depth")
+        return r, t
+    h = hs[0] if hs else 0.0
+    s0 = a_ref / spec.n_a
+    q = spec.growth
+    L = spec.L * max(a_ref, h)
+    r = _radial_grid(a_ref, h, L, spec)
 
     t_f = spec.t_fine * a_ref
     if h > 0:
@@ -318,29 +445,57 @@ def grids(a_ref: float, h: float, spec: MeshSpec, rigid_base: bool = False) -> t
 
 
 def build_mesh(
-    a_ref: float, h: float, spec: MeshSpec, rigid_base: bool = False, interface: str = "bonded"
+    a_ref: float,
+    h: float | Sequence[float],
+    spec: MeshSpec,
+    rigid_base: bool = False,
+    interface: str | Sequence[str] = "bonded",
 ) -> LayeredMesh:
     """Graded tensor-product mesh for a contact of radius about ``a_ref`` on a coating of
-    thickness ``h`` (0: homogeneous body) over an elastic (or, ``rigid_base``, rigid) substrate;
-    ``interface = 'frictionless'``: separate nodes for the two regions on ``z = -h``."""
-    if interface not in ("bonded", "frictionless"):
+    thickness ``h`` (0: homogeneous body), or on a stack of layers ``h = (h_1, ..., h_N)`` (top
+    first), over an elastic (or, ``rigid_base``, rigid) substrate. ``interface``: one for the
+    coating, or one per layer (its lower face); ``frictionless`` gives the two sides of that
+    interface their own nodes (not on a rigid base, where only ``u_z = 0`` holds)."""
+    _check_inputs(a_ref, h, rigid_base)
+    hs = thicknesses(h)
+    ifs = (interface,) * len(hs) if isinstance(interface, str) else tuple(interface)
+    if len(ifs) != len(hs):
+        raise CoatHertzError(f"interface: one per layer expected ({len(hs)}), got {len(ifs)}")
+    for i, f in enumerate(ifs, 1):
+        if f not in ("bonded", "frictionless"):
+            where = "interface" if isinstance(interface, str) else f"layer {i} interface"
+            raise CoatHertzError(f"{where} must be 'bonded' or 'frictionless', got {f!r}")
+    if isinstance(interface, str) and interface not in ("bonded", "frictionless"):
         raise CoatHertzError(f"interface must be 'bonded' or 'frictionless', got {interface!r}")
-    r, t = grids(a_ref, h, spec, rigid_base)
-    L = spec.L * max(a_ref, h)
-    D = h if rigid_base else L
+    r, t = grids(a_ref, hs if len(hs) > 1 else (hs[0] if hs else 0.0), spec, rigid_base)
+    h_tot = float(sum(hs))
+    depths = tuple(float(x) for x in np.cumsum(hs))
+    if len(hs) == 1:
+        depths = (h_tot,)
+    L = spec.L * max(a_ref, h_tot)
+    D = h_tot if rigid_base else L
     r_f = spec.r_fine * a_ref
-    z = -t[::-1]
-    if interface == "frictionless" and h > 0 and not rigid_base:
-        k = int(np.argmin(np.abs(t - h)))
-        sub = MeshQuad.init_tensor(r, -t[k:][::-1])
-        coat = MeshQuad.init_tensor(r, -t[: k + 1][::-1])
-        mesh = MeshQuad(np.hstack([coat.p, sub.p]), np.hstack([coat.t, sub.t + coat.p.shape[1]]))
+    # blocks of the depth grid between frictionless interfaces (each its own node set)
+    cuts = [int(np.argmin(np.abs(t - d))) for i, (d, f) in enumerate(zip(depths, ifs, strict=True))
+            if f == "frictionless" and not (rigid_base and i == len(hs) - 1)]
+    if cuts:
+        bounds = [0, *cuts, len(t) - 1]
+        blocks = [MeshQuad.init_tensor(r, -t[k0 : k1 + 1][::-1])
+                  for k0, k1 in itertools.pairwise(bounds)]
+        offsets = np.cumsum([0] + [b.p.shape[1] for b in blocks[:-1]])
+        mesh = MeshQuad(np.hstack([b.p for b in blocks]),
+                        np.hstack([b.t + o for b, o in zip(blocks, offsets, strict=True)]))
     else:
-        mesh = MeshQuad.init_tensor(r, z)
+        mesh = MeshQuad.init_tensor(r, -t[::-1])
     zc = mesh.p[1, mesh.t].mean(axis=0)
-    coating = np.nonzero(zc > -h)[0] if h > 0 else np.array([], dtype=np.int64)
-    substrate = np.nonzero(zc <= -h)[0] if not rigid_base else np.array([], dtype=np.int64)
-    return LayeredMesh(mesh, coating, substrate, a_ref, h, L, D, r_f, rigid_base, spec, interface)
+    tops = (0.0, *depths[:-1]) if depths else ()
+    layers = tuple(np.nonzero((zc < -top) & (zc > -bot))[0] for top, bot in zip(tops, depths, strict=True))
+    coating = np.nonzero(zc > -h_tot)[0] if hs else np.array([], dtype=np.int64)
+    substrate = np.nonzero(zc <= -h_tot)[0] if not rigid_base else np.array([], dtype=np.int64)
+    single = interface if isinstance(interface, str) else "bonded"
+    summary = "frictionless" if "frictionless" in ifs else (ifs[0] if ifs else single)
+    return LayeredMesh(mesh, coating, substrate, a_ref, h_tot, L, D, r_f, rigid_base, spec, summary,
+                       layers, depths, ifs)
 
 
 def build_companion(lm: LayeredMesh) -> LayeredMesh:

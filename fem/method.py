@@ -17,6 +17,13 @@ Supported cases (``supports``): circular contacts in which
   indenter enters as its own candidates' compliance added to the body's
   (:class:`coathertz.fem.contact.TwoBody`). Checked against Hertz (two different homogeneous
   bodies) and the DC-FFT (Section 6 B4C example) in ``tests/fem/test_two_body.py``.
+
+The deformable body may carry a layer stack (``Body.layers``, top first): each layer is its own
+region of the mesh (:func:`coathertz.fem.mesh.build_mesh` puts element edges on every interface),
+each interface bonded or frictionless as the layer says, on an elastic or rigid substrate. A
+one-layer stack is the coating case, number for number. Checked against the exact method
+(axisym) in ``tests/multilayer/test_fe_stack.py``. Stacks are elastic only: the plastic path
+(:mod:`coathertz.fem.plastic`) refuses them.
 """
 
 from __future__ import annotations
@@ -30,7 +37,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from coathertz import validity
-from coathertz.case import ContactCase, refuse_stack
+from coathertz.case import ContactCase
 from coathertz.closedform.hertz import hertz_circular
 from coathertz.errors import CoatHertzError, ConvergenceError
 from coathertz.fem.contact import ActiveSet, Penalty, TwoBody
@@ -41,7 +48,7 @@ from coathertz.fem.mesh import MESH_LEVELS, MeshSize, build_companion, build_mes
 from coathertz.fem.model import FEModel, Region
 from coathertz.fem.post import AXIS_TOL, contact_radius, peak_pressure, stress_report, surface_pressure
 from coathertz.fem.solvers import AMGSolver, DirectSolver
-from coathertz.materials import Body, Material
+from coathertz.materials import Body, Layer, Material
 from coathertz.methods import require_case
 from coathertz.results import ContactResult
 from coathertz.validity import A_OVER_R_MAX
@@ -61,9 +68,10 @@ class Equivalent:
     indenter: Material | None = None  # an elastic homogeneous indenter, modelled as a second body
 
 
-def axisymmetric_equivalent(case: ContactCase) -> Equivalent | None:
-    """The model problem that ``case`` reduces to, or ``None`` (see module docstring)."""
-    if not case.is_circular or case.is_stacked:  # no layer stacks in the FE model
+def axisymmetric_equivalent(case: ContactCase, stacks: bool = False) -> Equivalent | None:
+    """The model problem that ``case`` reduces to, or ``None`` (see module docstring); a case
+    with a layer stack only with ``stacks=True`` (the elastic model; the plastic path has none)."""
+    if not case.is_circular or (case.is_stacked and not stacks):
         return None
     b1, b2 = case.body1, case.body2
     if b1.is_rigid and not b2.is_rigid:
@@ -74,7 +82,7 @@ def axisymmetric_equivalent(case: ContactCase) -> Equivalent | None:
     if pair is not None:
         return Equivalent(pair.body2, pair.R, case.IDENTICAL_PAIR_DELTA_FACTOR)
     for ind, other in ((b1, b2), (b2, b1)):
-        if not ind.is_coated and not ind.material.is_rigid and not other.is_rigid:
+        if not ind.is_coated and not ind.is_stacked and not ind.material.is_rigid and not other.is_rigid:
             return Equivalent(other, case.R, 1.0, indenter=ind.material)
     return None
 
@@ -87,6 +95,18 @@ BYTES_PER_DOF = {"displacement": 10_000, "mixed": 20_000}
 BASE_BYTES = 300e6
 
 
+def refuse_plastic_stack(case: ContactCase, what: str) -> None:
+    """Raise one clear line if ``case`` has a layer stack: the elastic-plastic FE (``what``) models
+    one coating at most."""
+    for name in ("body1", "body2"):
+        body = getattr(case, name)
+        if body.is_stacked:
+            raise CoatHertzError(
+                f"{what}: {name} has a stack of {len(body.layers)} layers; plasticity is modelled for"
+                " one coating at most (layers: not supported): solve the stack elastically with fem,"
+                " axisym or fft")
+
+
 def default_max_memory_gb() -> float:
     """Half the physical memory, at most 8 GiB: the default memory budget of one FE solve."""
     try:
@@ -96,11 +116,23 @@ def default_max_memory_gb() -> float:
     return min(8.0, 0.5 * phys)
 
 
-def estimate_memory(size: MeshSize, coating_mixed: bool, substrate_mixed: bool) -> tuple[int, float]:
-    """Unknowns and estimated peak memory [bytes] of a solve on a mesh of ``size``."""
+def estimate_memory(
+    size: MeshSize, coating_mixed: bool | tuple[bool, ...], substrate_mixed: bool
+) -> tuple[int, float]:
+    """Unknowns and estimated peak memory [bytes] of a solve on a mesh of ``size``
+    (``coating_mixed``: one flag per layer of a stack)."""
     dofs = size.displacement_dofs + size.pressure_dofs(coating_mixed, substrate_mixed)
-    per = BYTES_PER_DOF["mixed" if (coating_mixed or substrate_mixed) else "displacement"]
+    any_coat = coating_mixed if isinstance(coating_mixed, bool) else any(coating_mixed)
+    per = BYTES_PER_DOF["mixed" if (any_coat or substrate_mixed) else "displacement"]
     return dofs, BASE_BYTES + per * dofs
+
+
+def _mesh_thickness(layers: tuple[Layer, ...]) -> float | tuple[float, ...]:
+    """The ``h`` of :func:`~coathertz.fem.mesh.build_mesh`: the coating's thickness (0: none), or
+    the layer thicknesses of a stack of two or more (top first)."""
+    if len(layers) > 1:
+        return tuple(L.h for L in layers)
+    return layers[0].h if layers else 0.0
 
 
 def _finite_or_none(x: float) -> float | None:
@@ -225,15 +257,27 @@ class FEMMethod:
         return s
 
     def supports(self, case: ContactCase) -> bool:
-        return not case.is_stacked and axisymmetric_equivalent(case) is not None
+        return self._stack_refusal(case) is None and axisymmetric_equivalent(case, stacks=True) is not None
+
+    def _stack_refusal(self, case: ContactCase) -> str | None:
+        """Why this method cannot solve ``case``'s layer stack (``None``: it can, or no stack)."""
+        if not case.is_stacked:
+            return None
+        name = "body1" if case.body1.is_stacked else "body2"
+        n = len(getattr(case, name).layers)
+        if self.interface != "bonded":
+            return (f"fem: {name} has a stack of {n} layers, whose interfaces are set per layer"
+                    f" (Layer.interface); the method's interface={self.interface!r} applies to one coating"
+                    " only: leave it at 'bonded'")
+        return None
 
     # ------------------------------------------------------------------------------------
     def _regions(self, lm, body: Body) -> list[Region]:
         is_mixed = self._is_mixed
         regions = []
-        if lm.h > 0:
-            cm = body.coating.material
-            regions.append(Region(lm.coating, LinearElastic(cm.E, cm.nu), is_mixed(cm)))
+        for els, layer in zip(lm.layers, body.stack, strict=True):
+            cm = layer.material
+            regions.append(Region(els, LinearElastic(cm.E, cm.nu), is_mixed(cm)))
         if not lm.rigid_base:
             sm = body.material
             els = lm.substrate if lm.h > 0 else np.arange(lm.n_elements)
@@ -248,25 +292,29 @@ class FEMMethod:
 
         Returns the mesh size, the unknowns and the estimated peak memory [bytes].
         """
-        h = body.coating.h if body.is_coated else 0.0
+        layers = body.stack
+        h = _mesh_thickness(layers)
         rigid_base = body.material.is_rigid
         size = mesh_size(a_ref, h, self.spec, rigid_base)
-        mats = body.deformable_materials  # coating (if any), then an elastic substrate
-        c_mixed = h > 0 and self._is_mixed(mats[0])
-        s_mixed = not rigid_base and self._is_mixed(mats[-1])
+        c_mixed = tuple(self._is_mixed(L.material) for L in layers) if len(layers) > 1 else (
+            bool(layers) and self._is_mixed(layers[0].material))
+        s_mixed = not rigid_base and self._is_mixed(body.material)
         dofs, mem = estimate_memory(size, c_mixed, s_mixed)
+        h = layers[0].h if layers else 0.0  # the top layer sets the contact-edge band
         limit = self.max_memory_gb * 2**30
         if mem <= limit:
             return size, dofs, mem
         level = f"mesh={self.mesh!r}" + "".join(f", {k}={v!r}" for k, v in self.overrides.items())
         s_e, _ = edge_band(a_ref, h, self.spec)
         if h > 0 and s_e < a_ref / self.spec.n_a and size.n_r > 4 * self.spec.n_a * self.spec.r_fine:
+            what = "the top layer of the stack" if len(layers) > 1 else "the coating"
             cause = (
-                f"the coating is very thin, H = h/a = {h / a_ref:.3g} (h = {h:.4g} m, a ~ {a_ref:.4g} m): the"
+                f"{what} is very thin, H = h/a = {h / a_ref:.3g} (h = {h:.4g} m, a ~ {a_ref:.4g} m): the"
                 f" contact edge is resolved with elements of size {self.spec.edge:g} h / n_a = {s_e:.3g} m"
             )
+            without = "the stack without that layer" if len(layers) > 1 else "the uncoated substrate"
             hint = (
-                "use the fft method, or, for H < 1e-3, the uncoated substrate (the coating changes delta, a"
+                f"use the fft method, or, for H < 1e-3, {without} ({what} changes delta, a"
                 " and p0 by O(H)); a coarser mesh (mesh='coarse' or a smaller n_a) or a larger"
                 " max_memory_gb if the machine has the memory"
             )
@@ -295,29 +343,44 @@ class FEMMethod:
         return self.mixed == "always" or (self.mixed == "auto" and m.nu >= 0.45)
 
     def _predict_a(self, eq: Equivalent, W: float) -> float:
+        """Contact radius to build the first mesh around: the Hertz radii of the layers and the
+        substrate weighted by ``exp(-depth / a)`` (a stack: each layer by its share of it)."""
         body = eq.body
-        h = body.coating.h if body.is_coated else 0.0
+        layers = body.stack
         c_ind = eq.indenter.compliance if eq.indenter is not None else 0.0
 
         def E_pair(m: Material) -> float:  # the pair's E* (eq 2) with an elastic indenter
             return 1.0 / (m.compliance + c_ind) if (m.compliance + c_ind) > 0 else math.inf
 
-        if h == 0:
+        if not layers:
             return float(hertz_circular(W, eq.R, E_pair(body.material)).a0)
-        a_c = float(hertz_circular(W, eq.R, E_pair(body.coating.material)).a0)
-        if body.material.is_rigid and c_ind == 0:
-            return a_c
-        a_s = float(hertz_circular(W, eq.R, E_pair(body.material)).a0)
-        wgt = 1.0 - math.exp(-h / a_s)
-        return a_s + (a_c - a_s) * wgt
+        a_c = float(hertz_circular(W, eq.R, E_pair(layers[0].material)).a0)
+        if len(layers) == 1:
+            h = layers[0].h
+            if body.material.is_rigid and c_ind == 0:
+                return a_c
+            a_s = float(hertz_circular(W, eq.R, E_pair(body.material)).a0)
+            wgt = 1.0 - math.exp(-h / a_s)
+            return a_s + (a_c - a_s) * wgt
+        rigid = body.material.is_rigid and c_ind == 0
+        a_s = a_c if rigid else float(hertz_circular(W, eq.R, E_pair(body.material)).a0)
+        depth, a_w = 0.0, 0.0
+        for L in layers:
+            w_top, w_bot = math.exp(-depth / a_s), math.exp(-(depth + L.h) / a_s)
+            a_w += float(hertz_circular(W, eq.R, E_pair(L.material)).a0) * (w_top - w_bot)
+            depth += L.h
+        w_sub = math.exp(-depth / a_s)
+        return a_w / (1.0 - w_sub) if rigid else a_w + a_s * w_sub
 
     def solve(self, case: ContactCase) -> ContactResult:
         return self.solve_full(require_case(case, self.name))[0]
 
     def solve_full(self, case: ContactCase) -> tuple[ContactResult, FEModel, LoadPath]:
         """Like :meth:`solve`, also returning the model and the load path (for VTU output)."""
-        refuse_stack(case, "fem")
-        eq = axisymmetric_equivalent(case)
+        why = self._stack_refusal(case)
+        if why is not None:
+            raise CoatHertzError(why)
+        eq = axisymmetric_equivalent(case, stacks=True)
         if eq is None:
             raise CoatHertzError(
                 "fem supports circular contacts of a rigid or elastic uncoated indenter with an elastic"
@@ -325,21 +388,24 @@ class FEMMethod:
             )
         t0 = time.perf_counter()
         body = eq.body
-        h = body.coating.h if body.is_coated else 0.0
+        layers = body.stack  # the coating as a one-layer stack
+        h = _mesh_thickness(layers)
+        h_top = layers[0].h if layers else 0.0  # sets the contact-edge band
         rigid_base = body.material.is_rigid
         ff_mat = None if rigid_base else body.material
-        E_ref = body.coating.material.E_star if h > 0 else body.material.E_star
+        E_ref = layers[0].material.E_star if layers else body.material.E_star
 
         def g0(r):
             return r**2 / (2.0 * eq.R)  # Hertz paraboloid
 
         a_ref = self._predict_a(eq, case.W)
         interface = case.interface_for(self.interface)
+        interfaces = tuple(L.interface for L in layers) if case.is_stacked else interface
         remeshes = 0
         active0 = None
         while True:
             self.check_size(a_ref, body, eq.R)
-            lm = build_mesh(a_ref, h, self.spec, rigid_base, interface)
+            lm = build_mesh(a_ref, h, self.spec, rigid_base, interfaces)
             model = FEModel(lm, self._regions(lm, body), ff_mat, FARFIELDS[self.farfield](),
                             legacy_assembly=not self._reuse_factorisation)
             if any(reg.mixed for reg in model.regions) or model.tie.shape[1]:
@@ -363,7 +429,7 @@ class FEMMethod:
             top = model.top
             gap_top = g0(model.r_dof[top]) - sol.delta - path.x[top]
             outside_ok = np.all(gap_top[model.r_dof[top] > lm.r_fine] >= 0)
-            s_e, w = edge_band(a_ref, h, self.spec)
+            s_e, w = edge_band(a_ref, h_top, self.spec)
             if s_e < a_ref / self.spec.n_a:
                 in_zone = abs(a - a_ref) <= 0.7 * w
             else:
@@ -382,7 +448,7 @@ class FEMMethod:
         wall = time.perf_counter() - t0
         meta = {
             "settings": self.settings(),
-            "interface": interface,
+            "interface": interface if not case.is_stacked else lm.interface,
             "mesh_level": self.mesh,
             "elements": lm.n_elements,
             "dofs": int(model.n_dofs),
@@ -397,6 +463,9 @@ class FEMMethod:
             "remeshes": remeshes,
             "a_ref": a_ref,
             "mixed_regions": [bool(reg.mixed) for reg in model.regions],
+            **({"layers": [{"h": L.h, "interface": f, "elements": len(els)}
+                           for L, f, els in zip(layers, lm.interfaces, lm.layers, strict=True)]}
+               if case.is_stacked else {}),
             "R_model": eq.R,
             "delta_factor": eq.delta_factor,
             "a_node": radii["a_node"],

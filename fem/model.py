@@ -90,20 +90,22 @@ class FEModel:
         return len(get_quadrature(self.elem.refdom, INTORDER)[1])
 
     def _tie_pairs(self) -> np.ndarray:
-        """Frictionless interface on an elastic substrate: pairs ``[2, n]`` of ``u_z`` dofs at the
-        same point of ``z = -h``, one of each region (not on the outer boundary, which prescribes
-        both). They are tied by Lagrange multipliers in :meth:`stiffness`; ``u_r`` slips freely."""
+        """Frictionless interfaces over an elastic body (:meth:`LayeredMesh.split_depths`): pairs
+        ``[2, n]`` of ``u_z`` dofs at the same point of each such ``z = -d``, one of each side (not
+        on the outer boundary, which prescribes both). They are tied by Lagrange multipliers in
+        :meth:`stiffness`; ``u_r`` slips freely."""
         lm = self.lm
-        if lm.interface != "frictionless" or lm.h <= 0 or lm.rigid_base:
-            return np.zeros((2, 0), dtype=np.int64)
         tol = 1e-9 * lm.a_ref
-        on = np.nonzero((np.abs(self.z_dof + lm.h) < tol) & (self.comp == 1)
-                        & (np.abs(self.r_dof - lm.L) > tol * lm.L / lm.a_ref))[0]
-        on = on[np.lexsort((on, self.r_dof[on]))]
-        pairs = on.reshape(-1, 2).T
-        if not np.allclose(self.r_dof[pairs[0]], self.r_dof[pairs[1]], rtol=0, atol=tol):
-            raise RuntimeError("frictionless interface: unmatched interface nodes (internal error)")
-        return pairs
+        pairs = [np.zeros((2, 0), dtype=np.int64)]
+        for d in lm.split_depths():
+            on = np.nonzero((np.abs(self.z_dof + d) < tol) & (self.comp == 1)
+                            & (np.abs(self.r_dof - lm.L) > tol * lm.L / lm.a_ref))[0]
+            on = on[np.lexsort((on, self.r_dof[on]))]
+            pd = on.reshape(-1, 2).T
+            if not np.allclose(self.r_dof[pd[0]], self.r_dof[pd[1]], rtol=0, atol=tol):
+                raise RuntimeError("frictionless interface: unmatched interface nodes (internal error)")
+            pairs.append(pd)
+        return np.hstack(pairs)
 
     # -- dofs ----------------------------------------------------------------------------
     @property
@@ -123,7 +125,7 @@ class FEModel:
         outer = (np.abs(r - self.lm.L) < tol * self.lm.L / self.lm.a_ref) | (
             np.abs(z + self.lm.D) < tol * self.lm.L / self.lm.a_ref
         )
-        if self.lm.rigid_base and self.lm.interface == "frictionless":
+        if self.lm.rigid_base and self.lm.bottom_interface == "frictionless":
             # the coating slides on the rigid base: only u_z = 0 on the bottom (r = L stays clamped)
             tol_far = tol * self.lm.L / self.lm.a_ref
             bottom = np.abs(z + self.lm.D) < tol_far

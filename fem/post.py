@@ -161,7 +161,9 @@ class StressField:
 def stress_report(model: FEModel, x: np.ndarray, a: float,
                   sig: dict[int, np.ndarray] | None = None) -> tuple[dict, dict]:
     """Axis and interface stress profiles (fields) and their extrema (meta); ``sig`` as in
-    :class:`StressField`."""
+    :class:`StressField`. The coating/substrate interface has the keys ``interface_coating`` and
+    ``interface_substrate``; a stack's interface ``i`` (under layer ``i``, over an elastic layer or
+    substrate) ``interface{i}_above`` and ``interface{i}_below``."""
     sf = StressField(model, x, sig)
     lm = model.lm
     fields: dict[str, np.ndarray] = {}
@@ -182,20 +184,30 @@ def stress_report(model: FEModel, x: np.ndarray, a: float,
     fields["axis_von_mises"] = vm
     i = int(np.argmax(vm))
     meta["axis_max_von_mises"] = {"value": float(vm[i]), "z": float(z[i])}
-    if lm.h > 0 and len(model.regions) > 1:
-        rr = np.linspace(eps, 3.0 * a, 301)
-        for k, side, dz in ((0, "coating", +1), (1, "substrate", -1)):
-            pts = np.vstack([rr, np.full(len(rr), -lm.h + dz * 1e-6 * lm.h)])
+    # (region above, region below, depth, key prefix of each side): the coating/substrate
+    # interface, or each interface of a stack over what lies below it (none on a rigid base)
+    sides: list[tuple[int, int, float, str, str]] = []
+    if len(lm.depths) <= 1:
+        if lm.h > 0 and len(model.regions) > 1:
+            sides.append((0, 1, lm.h, "interface_coating", "interface_substrate"))
+    else:
+        for i, d in enumerate(lm.depths):
+            if i + 1 < len(model.regions):
+                sides.append((i, i + 1, d, f"interface{i + 1}_above", f"interface{i + 1}_below"))
+    rr = np.linspace(eps, 3.0 * a, 301)
+    for k_up, k_down, depth, key_up, key_down in sides:
+        for k, key, dz in ((k_up, key_up, +1), (k_down, key_down, -1)):
+            pts = np.vstack([rr, np.full(len(rr), -depth + dz * 1e-6 * depth)])
             s = sf.at(k, pts)
             fields["interface_r"] = rr
             for name, v in zip(STRESS_NAMES, s, strict=True):
-                fields[f"interface_{side}_{name}"] = v
+                fields[f"{key}_{name}"] = v
             vmi = von_mises(s)
-            fields[f"interface_{side}_von_mises"] = vmi
+            fields[f"{key}_von_mises"] = vmi
             pr = principal(s)
-            fields[f"interface_{side}_sigma_1"] = pr[0]
+            fields[f"{key}_sigma_1"] = pr[0]
             j, jt, jr = int(np.argmax(vmi)), int(np.argmax(pr[0])), int(np.argmax(np.abs(s[3])))
-            meta[f"interface_{side}"] = {
+            meta[key] = {
                 "max_von_mises": float(vmi[j]),
                 "r_max_von_mises": float(rr[j]),
                 "max_sigma_1": float(pr[0][jt]),

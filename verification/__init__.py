@@ -18,7 +18,9 @@ A study is a public module of this package that defines
     Writes its figures (PNG and SVG) and returns their paths.
 
 Optional: ``QUANTITIES``, ``VARIANTS`` (study-specific method variants: name -> (registered
-method, extra settings)), ``PREDICTED`` (default ``closed-form``), ``GENERIC_FIGURES = False``.
+method, extra settings)), ``PREDICTED`` (default ``closed-form``), ``GENERIC_FIGURES = False``,
+``RUN_EARLY = True`` (``verify`` runs it before the others, the report keeps the paper's order:
+for a study whose ``analyse`` solves in processes of its own).
 
 :func:`studies` discovers the modules with ``pkgutil``, so adding a module adds a study.
 This package's namespace is the public API the studies, the report and the CLI use.

@@ -4,14 +4,17 @@ Not a figure of the paper: an extension. Configuration: a rigid sphere (R = 5 mm
 3 um TiN top layer (450 GPa, nu = 0.25) over an interlayer (modulus ratio
 :math:`E_i/E_s`, nu = 0.3, thickness :math:`h_i`) on steel (210 GPa, 0.3), all interfaces bonded;
 plus the TiN layer alone (``coating-only``, a one-layer stack: equal to the coating to 1e-15,
-``tests/multilayer``), the baseline of every ratio. The closed form and
-the FE model refuse stacks; the exact method (axisym, where registered) and the FFT solve them.
+``tests/multilayer``), the baseline of every ratio. The closed form refuses stacks; the exact
+method (axisym, where registered), the FFT and the FE model solve them (the FE, about 1 s of CPU
+per case at its default mesh, on every case at ``full``, on the baseline and two interlayers at
+``quick``).
 
 Claims: an interlayer of the substrate's own material (:math:`E_i = E_s`) adds nothing (each
 quantity within 1e-6 % of the coating-only case, at every :math:`h_i`: an identity of the
-N-layer kernel, judged on an exact method, reference rank >= 30; measured 4e-8 %); the FFT's
-differences from the reference are reported (observation), and the effect of the interlayer on
-delta, a, p0 is mapped (figure).
+N-layer kernel, judged on an exact method, reference rank >= 30; measured 4e-8 %); the FFT and
+the FE agree with the exact method within 0.02 % in delta and p0 and 0.1 % in a (measured at
+``quick``: 0.0023 % and 0.05 %); the effect of the interlayer on delta, a, p0 is mapped
+(figure).
 
 Resolutions: ``full`` 5 ratios x 4 thicknesses; ``quick`` 3 x 3; ``tiny`` 2 x 1 (+ the baseline).
 """
@@ -27,12 +30,14 @@ from coathertz.materials import Body, Layer, Material
 NAME = "multilayer"
 TITLE = "Layer stacks: TiN over an interlayer (modulus ratio, thickness) on steel, rigid sphere"
 CLAIM = ("Extension: an interlayer of the substrate's material adds nothing; the "
-         "interlayer's modulus and thickness against delta, a, p0 (exact method and FFT).")
+         "interlayer's modulus and thickness against delta, a, p0 (exact method, FFT and FE).")
 STEEL = Material(210e9, 0.3)
 TIN = Material(450e9, 0.25)
 H_TOP = 3e-6
 R, W = 5e-3, 2.0
 IDENTITY_BOUND = 1e-6  # percent
+#: Agreement asked of every stack-capable method with the exact one [%]: delta and p0 2e-4, a 1e-3.
+AGREE_BOUND = {"delta": 0.02, "p0": 0.02, "a": 0.1}
 QS = ("delta", "a", "p0")
 #: Methods ranked this high are exact (the axisymmetric integral-equation method): they judge the identity.
 EXACT_RANK = 30
@@ -52,15 +57,27 @@ def _case(layers: tuple[Layer, ...], label: str) -> ContactCase:
     return ContactCase(Body.rigid_sphere(R), Body(STEEL, layers=layers), W, label=label)
 
 
+def fe_cases(resolution: str) -> set[tuple[float, float]]:
+    """The (E_i/E_s, h_i) the FE solves besides the baseline: every one at ``full`` and ``tiny``;
+    at ``quick`` the soft and the stiff interlayer at the middle thickness (the FE costs about a
+    second per case, the main job's budget)."""
+    ratios, hs = grid(resolution)
+    if resolution == "quick":
+        return {(ratios[0], hs[1]), (ratios[-1], hs[1])}
+    return {(Ei, hi) for Ei in ratios for hi in hs}
+
+
 def cases(resolution: str) -> list[C.StudyCase]:
     ratios, hs = grid(resolution)
+    fe = fe_cases(resolution)
     base = _case((Layer(TIN, H_TOP),), "TiN on steel")
-    out = [C.StudyCase("coating-only", base, {"E_i": math.nan, "h_i": 0.0}, "moderate")]
+    out = [C.StudyCase("coating-only", base, {"E_i": math.nan, "h_i": 0.0}, "expensive")]
     for Ei in ratios:
         for hi in hs:
             cid = f"Ei={Ei:g},hi={hi * 1e6:g}um"
             layers = (Layer(TIN, H_TOP), Layer(Material(Ei * STEEL.E, STEEL.nu), hi))
-            out.append(C.StudyCase(cid, _case(layers, cid), {"E_i": Ei, "h_i": hi}, "moderate"))
+            tier = "expensive" if (Ei, hi) in fe else "moderate"
+            out.append(C.StudyCase(cid, _case(layers, cid), {"E_i": Ei, "h_i": hi}, tier))
     return out
 
 
@@ -89,14 +106,20 @@ def analyse(result: C.StudyResult) -> None:
             worst < IDENTITY_BOUND, "%", 1e-6,
             judged_against=f"{', '.join(sorted({r['method'] for r in same}))} on {len(same)} cases"))
     checks = [d for d in result.crosscheck if not d["method"].endswith("-refined")]
-    if checks:
-        worst = max(abs(d["diff"]) for d in checks)
-        d = max(checks, key=lambda d: abs(d["diff"]))
+    for qs, bound, what in ((("delta", "p"), AGREE_BOUND["delta"], "delta and p0"),
+                            (("a",), AGREE_BOUND["a"], "a")):  # quantities named as in the cross-checks
+        mine = [d for d in checks if d["quantity"] in qs]
+        if not mine:
+            continue
+        d = max(mine, key=lambda d: abs(d["diff"]))
+        worst = abs(d["diff"])
         result.claims.append(C.Claim(
-            "multilayer-methods-agree", "max |difference| of the other methods from the reference "
-            "over the stacks (delta, a, p0)", worst, "(observation)", None, "%", 0.05,
-            f"largest: {d['pair']}, {d['quantity']}, case {d['case']}",
-            judged_against=f"{len({x['case'] for x in checks})} cases"))
+            f"multilayer-methods-agree-{'-'.join(qs).replace('p', 'p0')}",
+            f"max |difference| of the other methods (FFT, FE) from the exact method over the stacks, "
+            f"{what} (the stack issue's bound)", worst, f"< {bound:g} %", worst < bound, "%", 0.05 * bound,
+            f"largest: {d['pair']}, case {d['case']}",
+            judged_against=f"{len({x['case'] for x in mine})} cases, "
+                           f"{', '.join(sorted({x['pair'] for x in mine}))}"))
 
 
 def plot(result: C.StudyResult, outdir) -> list:

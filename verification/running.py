@@ -24,7 +24,7 @@ from coathertz.store import ResultStore, case_key
 from .study import CLOSED, StudyResult, check_resolution
 from .tables import QUANTITIES, crosscheck, make_errors, make_rows, uncertainty_by_case
 
-__all__ = ["build_methods", "plan", "run_study", "variants_of"]
+__all__ = ["build_methods", "plan", "run_study", "study_tasks", "variants_of"]
 
 
 def build_methods(resolution: str, names: Sequence[str] | None = None) -> tuple[dict[str, Any], list[str]]:
@@ -84,6 +84,17 @@ def plan(cases: Sequence[Any], methods: Mapping[str, Any], variants: Mapping[str
             if v in variants and variants[v].supports(sc.case):
                 todo.append((sc, v, variants[v]))
     return todo, absent
+
+
+def study_tasks(module, resolution: str, methods: Mapping[str, Any]) -> list:
+    """The (case, method) tasks :func:`run_study` gives the runner first for ``module`` (its
+    reference refinements, which depend on their results, come later): what a run may start
+    ahead while the study before it is analysed (``run_tasks(..., ahead=...)``)."""
+    from coathertz.runner import Task
+
+    variants, _ = variants_of(module, methods, resolution)
+    todo, _ = plan(module.cases(resolution), methods, variants)
+    return [Task(sc.case, m) for sc, _, m in todo]
 
 
 #: Suffix of the rows of a reference solved again at refined settings (convergence estimate).

@@ -199,6 +199,11 @@ def mesh_uncertainty(sc: C.StudyCase, row: dict, refined: dict, keys: tuple[str,
     return out
 
 
+#: ``verify`` runs this study first: its onset searches (:func:`solve_onsets`) run in processes of
+#: their own, a few long searches on few processes, and the next studies' cases fill the gaps.
+RUN_EARLY = True
+
+
 def solve_onsets(jobs: list[tuple[C.StudyCase, dict]], workers: int) -> list:
     """The onset of each (case, FE settings) of ``jobs``, in order; a failed search gives its
     exception. Up to ``workers`` forked processes (all of them finish with the call)."""

@@ -34,7 +34,7 @@ from coathertz.errors import CoatHertzError
 from coathertz.fem.farfield import BoussinesqFarField
 from coathertz.fem.material import LinearElastic
 from coathertz.fem.mesh import MeshSpec, build_mesh
-from coathertz.fem.method import axisymmetric_equivalent
+from coathertz.fem.method import axisymmetric_equivalent, refuse_plastic_stack
 from coathertz.fem.model import FEModel, Region
 from coathertz.fem.plastic.assembly import BBarAssembler
 from coathertz.fem.plastic.contact import IncrementalContact, NewtonSettings, PathState, geometry_of
@@ -288,6 +288,7 @@ def _r_fine_of(mesh: str | MeshSpec) -> float:
 def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_snapshots, locate_first_yield,
                         progress, a_ref, newton, targets, delta_max) -> PlasticResult:
     """One attempt of :func:`solve_plastic` on one mesh (raises :class:`ContactZoneExceeded`)."""
+    refuse_plastic_stack(case, "elastic-plastic FE")
     eq = axisymmetric_equivalent(case)
     if eq is None:
         raise CoatHertzError("the elastic-plastic FE model supports a rigid sphere on a (coated) body or two "

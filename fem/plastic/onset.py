@@ -27,7 +27,7 @@ from scipy.optimize import minimize_scalar
 
 from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError, ConvergenceError
-from coathertz.fem.method import FEMMethod, axisymmetric_equivalent
+from coathertz.fem.method import FEMMethod, axisymmetric_equivalent, refuse_plastic_stack
 from coathertz.fem.post import StressField, quad_stress, von_mises
 
 
@@ -65,6 +65,7 @@ class YieldOnset:
 
 
 def _yield_stresses(case: ContactCase, Yc: float | None, Ys: float | None) -> tuple[float, float]:
+    refuse_plastic_stack(case, "yield onset")
     eq = axisymmetric_equivalent(case)
     if eq is None:
         raise CoatHertzError("yield onset needs a case the FE model supports: " + case.describe())

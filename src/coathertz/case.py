@@ -313,7 +313,8 @@ class ContactCase:
 
         b1 = self.body1
         R2 = 2.0 * self.R
-        return ContactCase(Body(RIGID, None, R2, R2, name="rigid sphere"), Body(b1.material, b1.coating),
+        return ContactCase(Body(RIGID, None, R2, R2, name="rigid sphere"),
+                           Body(b1.material, b1.coating, layers=b1.layers),
                            self.W, label=f"{self.label} (equivalent)" if self.label else "")
 
 

@@ -427,7 +427,10 @@ class Body:
 
     @property
     def compliance_coating(self) -> float:
-        """(1 - nu^2)/E of the coating as a half-space (or of the substrate if uncoated)."""
+        """(1 - nu^2)/E of the coating as a half-space: of a stack's top layer, of the substrate
+        if uncoated."""
+        if self.layers:
+            return self.layers[0].material.compliance
         if self.coating is None:
             return self.material.compliance
         return self.coating.material.compliance

@@ -268,6 +268,7 @@ def run_tasks(
     retry_errors: bool = False,
     stop_after: int | None = None,
     desc: str = "cases",
+    ahead: Callable[[], Iterable[Task]] | None = None,
 ) -> RunOutcome:
     """Run every task not yet in ``store``; store each result as soon as it is available.
 
@@ -292,6 +293,11 @@ def run_tasks(
     stop_after
         Raise :class:`RunInterrupted` after this many new results are stored (for tests of
         interruption and resume).
+    ahead
+        The tasks of the *next* call (on the open :class:`worker_pool` only): once this call's
+        own chunks are all submitted, the free slots start those not stored yet, so that the
+        workers keep solving while this process analyses and draws (see :class:`_Ahead`). The
+        next call adopts them. Called at most once.
     """
     t_start = time.perf_counter()
     outcome = RunOutcome()
@@ -312,13 +318,19 @@ def run_tasks(
                 outcome.reused += 1
             else:
                 pending.append(t)
-    if not pending:
+    adopted = _AHEAD.adopt(pending)
+    if adopted:
+        covered = {Task(c, m).key for m, cs, _ in adopted.values() for c in cs}
+        pending = [t for t in pending if t.key not in covered]
+    if not pending and not adopted:
         outcome.wall_time = time.perf_counter() - t_start
         return outcome
 
     counts: dict[str, int] = {}
     for t in pending:
         counts[t.method.name] = counts.get(t.method.name, 0) + 1
+    for m, cs, _ in adopted.values():
+        counts[m.name] = counts.get(m.name, 0) + len(cs)
     bar = Progress(counts, desc, enabled=progress)
     stored = 0
     outside: list[str] = []
@@ -353,12 +365,14 @@ def run_tasks(
             t0 = time.perf_counter()
             res = solve_chunk(m, cs)
             record(m, cs, res, time.perf_counter() - t0)
-        if remote:
+        if remote or adopted:
             chunks = _chunks(remote, chunk_size)
             if scheduler is not None:
                 _run_dask(chunks, scheduler, record)
             else:
-                _run_processes(chunks, workers, record)
+                own = {t.key for t in unique.values()}
+                later = None if ahead is None else (lambda: _AHEAD.plan(ahead, store, own, chunk_size))
+                _run_processes(chunks, workers, record, adopted, later)
     finally:
         bar.close()
         outcome.wall_time = time.perf_counter() - t_start
@@ -416,6 +430,8 @@ def worker_init(parent: int) -> None:
     # Ctrl-C reaches the whole process group: the parent stops the run and terminates the
     # workers; a worker handling SIGINT itself would print its traceback ("Process ForkProcess-N:")
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    # terminated by the parent (an interrupted run): die quietly, not by a handler inherited from it
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
     _set_parent_death_signal()
     if os.getppid() != parent:  # the parent died before the signal was armed
         os._exit(1)
@@ -426,6 +442,73 @@ def worker_init(parent: int) -> None:
 _POOL: tuple[ProcessPoolExecutor, int] | None = None
 
 
+#: Chunks started ahead per worker at most (a chunk is 8 FFT cases or one FE case, about a
+#: second): enough to cover a study's analysis and drawing, little to lose on an interrupt.
+AHEAD_PER_WORKER = 3
+
+
+class _Ahead:
+    """Work of the next :func:`run_tasks` call started early on the shared pool.
+
+    ``queued`` chunks wait for a free slot; ``running`` maps a submitted chunk's future to its
+    (method, cases). :meth:`adopt` hands the next call the futures of its own tasks (it records
+    their results as if it had submitted them) and takes back its queued ones. What is never
+    adopted is dropped with the pool (only its results are lost: nothing was stored)."""
+
+    def __init__(self) -> None:
+        self.queued: list[tuple[Method, list[ContactCase]]] = []
+        self.running: dict[Future, tuple[Method, list[ContactCase]]] = {}
+
+    def clear(self) -> None:
+        for f in self.running:
+            f.cancel()
+        self.queued.clear()
+        self.running.clear()
+
+    def plan(self, ahead: Callable[[], Iterable[Task]], store: ResultStore, own: set,
+             chunk_size: int | None) -> None:
+        """Queue the tasks of ``ahead()`` that are neither this call's (``own``), nor stored, nor
+        already ahead, nor run in this process (``inline`` methods)."""
+        taken = own | {Task(c, m).key for m, cs in [*self.queued, *self.running.values()] for c in cs}
+        todo: dict[tuple, Task] = {}
+        for t in ahead():
+            if t.key not in taken and not getattr(t.method, "inline", False):
+                todo.setdefault(t.key, t)
+        by_method: dict[int, list[Task]] = {}
+        for t in todo.values():
+            by_method.setdefault(id(t.method), []).append(t)
+        for ts in by_method.values():
+            m = ts[0].method
+            found = store.get_many([t.case for t in ts], m.name, m.settings())
+            self.queued += _chunks([t for t in ts if t.key[0] not in found], chunk_size)
+
+    def top_up(self, ex: ProcessPoolExecutor, workers: int) -> None:
+        """Submit queued chunks while fewer than ``AHEAD_PER_WORKER * workers`` run."""
+        while self.queued and len(self.running) < AHEAD_PER_WORKER * workers:
+            m, cs = self.queued.pop(0)
+            self.running[ex.submit(solve_chunk, m, cs)] = (m, cs)
+
+    def adopt(self, pending: Sequence[Task]) -> dict[Future, tuple[Method, list[ContactCase], float]]:
+        """The running chunks that hold any of ``pending`` (removed from here, with their submit
+        time for :func:`run_tasks`'s records); queued chunks holding any are dropped (the caller
+        submits those tasks itself)."""
+        if not (self.queued or self.running):
+            return {}
+        want = {t.key for t in pending}
+
+        def mine(cs: list[ContactCase], m: Method) -> bool:
+            return any(Task(c, m).key in want for c in cs)
+
+        self.queued = [(m, cs) for m, cs in self.queued if not mine(cs, m)]
+        got = {f: (m, cs, time.perf_counter()) for f, (m, cs) in self.running.items() if mine(cs, m)}
+        for f in got:
+            del self.running[f]
+        return got
+
+
+_AHEAD = _Ahead()
+
+
 def _new_pool(workers: int) -> ProcessPoolExecutor:
     return ProcessPoolExecutor(max_workers=workers, mp_context=_mp_context(),
                                initializer=worker_init, initargs=(os.getpid(),))
@@ -434,6 +517,7 @@ def _new_pool(workers: int) -> ProcessPoolExecutor:
 def _kill_pool(ex: ProcessPoolExecutor) -> None:
     """Terminate the workers of ``ex`` at once (an interrupted run does not wait for the cases in
     flight: an FE case can take minutes) and shut it down."""
+    _AHEAD.clear()
     for p in list((getattr(ex, "_processes", None) or {}).values()):
         p.terminate()
     ex.shutdown(wait=False, cancel_futures=True)
@@ -461,6 +545,7 @@ class worker_pool:  # a context manager, named like the function it reads as
     def __exit__(self, kind, exc, tb) -> None:
         global _POOL
         _POOL = self._outer
+        _AHEAD.clear()  # work started for a call that did not come
         if self._ex is None:  # pragma: no cover - __enter__ failed
             return
         if kind is None:
@@ -469,14 +554,21 @@ class worker_pool:  # a context manager, named like the function it reads as
             _kill_pool(self._ex)
 
 
-def _run_processes(chunks: list, workers: int, record: Callable) -> None:
-    workers = max(1, min(workers, len(chunks), os.cpu_count() or 1))
+def _run_processes(chunks: list, workers: int, record: Callable,
+                   adopted: Mapping[Future, tuple] | None = None,
+                   later: Callable[[], None] | None = None) -> None:
+    """Run ``chunks`` on local processes and ``record`` each result; ``adopted``: futures already
+    running (started ahead), recorded like the others; ``later``: queues the next call's work
+    (:class:`_Ahead`), started in the slots this call's chunks leave free at its end."""
+    workers = max(1, min(workers, max(len(chunks), 1), os.cpu_count() or 1))
     # the pool of an open worker_pool block, unless a worker of it died (a broken pool)
     shared = _POOL is not None and _POOL[1] >= workers and not getattr(_POOL[0], "_broken", False)
     ex = _POOL[0] if shared else _new_pool(workers)  # type: ignore[index]
-    futures: dict[Future, tuple[Method, list, float]] = {}
+    futures: dict[Future, tuple[Method, list, float]] = dict(adopted or {})
     it = iter(chunks)
     clean = False
+    ahead = shared and later is not None
+    started_ahead = False
     try:
         # keep at most 2 * workers chunks submitted: an interrupt then loses little work
         for m, cs in it:
@@ -496,6 +588,14 @@ def _run_processes(chunks: list, workers: int, record: Callable) -> None:
                 nxt = next(it, None)
                 if nxt is not None:
                     futures[ex.submit(solve_chunk, *nxt)] = (nxt[0], nxt[1], time.perf_counter())
+                elif ahead:  # this call's chunks are all out: the next call's fill the free slots
+                    if not started_ahead:
+                        started_ahead = True
+                        try:
+                            later()  # type: ignore[misc]
+                        except Exception:  # the next call plans again and reports it
+                            _AHEAD.queued.clear()
+                    _AHEAD.top_up(ex, _POOL[1])  # type: ignore[index]
         clean = True
     finally:
         for f in futures:

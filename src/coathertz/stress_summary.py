@@ -7,6 +7,8 @@ Method-independent: works on any field sampled on ``(z, component, y, x)`` in th
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 
 from coathertz.materials import Body
@@ -40,19 +42,22 @@ def _entry(values: np.ndarray, mask: np.ndarray, x, y, z, p0: float) -> dict | N
 
 
 def summarise(body: Body, x, y, z, sigma: np.ndarray, p0: float,
-              interface_sigma: np.ndarray | None = None) -> dict:
+              interface_sigma: np.ndarray | None = None,
+              interfaces: Sequence[tuple[float, np.ndarray]] | None = None) -> dict:
     """The designer's maxima, each ``{value [Pa], over_p0, at: [x, y, z] m}``.
 
     ``interface_sigma`` (``(6, ny, nx)``): the coating side of the interface ``z = h``, for
-    the interface shear ``sqrt(sigma_xz^2 + sigma_yz^2)`` and normal (tension) stress.
-    Entries that do not apply (no coating) are ``None``.
+    the interface shear ``sqrt(sigma_xz^2 + sigma_yz^2)`` and normal (tension) stress; or
+    ``interfaces``: ``(depth, sigma (6, ny, nx))`` for each interface of a layer stack (the
+    maxima over all of them). "Coating" is everything above the substrate (all layers of a
+    stack). Entries that do not apply (no coating) are ``None``.
     """
     z = np.asarray(z, dtype=float)
     vm = von_mises(sigma)
     s1 = first_principal(sigma)
     shape = vm.shape
     depth = np.broadcast_to(z[:, None, None], shape)
-    h = body.coating.h if body.coating is not None else None
+    h = sum(L.h for L in body.stack) if body.stack else None
     in_coating = depth <= h if h is not None else np.zeros(shape, bool)
     everywhere = np.ones(shape, bool)
     out = {
@@ -64,11 +69,13 @@ def summarise(body: Body, x, y, z, sigma: np.ndarray, p0: float,
         "interface_shear_max": None,
         "interface_normal_max": None,
     }
-    if h is not None and interface_sigma is not None:
-        zi = np.array([h])
-        shear = np.hypot(interface_sigma[3], interface_sigma[4])[None]
-        normal = interface_sigma[2][None]
+    if interfaces is None and h is not None and interface_sigma is not None:
+        interfaces = ((h, interface_sigma),)
+    if h is not None and interfaces:
+        zi = np.array([d for d, _ in interfaces], dtype=float)
+        sig = np.stack([s for _, s in interfaces])  # (n_int, 6, ny, nx)
+        shear = np.hypot(sig[:, 3], sig[:, 4])
         ones = np.ones(shear.shape, bool)
         out["interface_shear_max"] = _entry(shear, ones, x, y, zi, p0)
-        out["interface_normal_max"] = _entry(normal, ones, x, y, zi, p0)
+        out["interface_normal_max"] = _entry(sig[:, 2], ones, x, y, zi, p0)
     return out

@@ -95,3 +95,12 @@ def test_bad_layer_on_body1_names_body1():
         case_from_dict(d)
     msg = str(exc.value)
     assert "[body1] layer 1: Poisson's ratio nu must satisfy" in msg and "\n" not in msg, msg
+
+
+@pytest.mark.parametrize("command", ["predict", "axisym", "fft", "fem"])
+def test_interface_flag_on_a_stack_is_refused(command, capsys):
+    """``--interface`` sets a single coating's interface; on a stack (interfaces per layer) it
+    was silently ignored. Now one line naming the body and where a stack's interfaces go."""
+    assert main([command, "example:tin_ti_on_steel", "--interface", "frictionless"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "--interface: body2 has a layer stack" in err and "\n" not in err, err

@@ -18,7 +18,9 @@ def test_tiny_multilayer_study(tmp_path):
     assert {row["method"] for row in r.rows if row["case"] != "coating-only"} == {"fft", "axisym"}
     claim = next(c for c in r.claims if c.id == "multilayer-substrate-interlayer-adds-nothing")
     assert claim.verdict == "holds" and claim.value < 1e-6, claim
-    agree = next(c for c in r.claims if c.id == "multilayer-methods-agree")
-    assert agree.value < 0.5, agree  # fft (tiny grid) vs axisym, percent
+    for q in ("delta-p0", "a"):  # fft (tiny grid) vs axisym, percent: the claim is computed; at
+        # tiny the FFT's coarse grid need not meet the quick report's bounds
+        agree = next(c for c in r.claims if c.id == f"multilayer-methods-agree-{q}")
+        assert 0 < agree.value < 0.5 and agree.verdict in ("holds", "does not hold"), agree
     paths = mod.plot(r, tmp_path)
     assert {p.suffix for p in paths} == {".png"} and all(p.stat().st_size > 5000 for p in paths)

@@ -87,6 +87,38 @@ def test_worker_pool_serves_every_call_in_its_block(tmp_path):
         assert (out.reused, out.computed) == (5, 7) and st.count() == 12
 
 
+def test_next_call_runs_ahead_and_is_adopted_once(tmp_path):
+    """``ahead``: as a call's own chunks run out, the next call's unstored tasks start on the free
+    workers; the next call records them (each case solved exactly once, the same numbers as a
+    serial run) and the block's end drops what no call adopted."""
+    from coathertz import runner
+
+    log = tmp_path / "log"
+    m = FakeMethod(delay=0.01, log=str(log))
+    cs = cases(16)
+    first, second, third = ([Task(c, m) for c in cs[i:j]] for i, j in ((0, 4), (2, 10), (10, 16)))
+    with ResultStore(tmp_path / "s.sqlite", version="t") as st, worker_pool(2):
+        st.put(cs[9], "fake", m.settings(), {"a": 1.0}, None)  # stored: not started again
+        out1 = run_tasks(first, st, workers=2, progress=False, chunk_size=1, ahead=lambda: second)
+        started = {c.label for _, chunk in [*runner._AHEAD.running.values(), *runner._AHEAD.queued]
+                   for c in chunk}
+        assert started == {f"c{i}" for i in range(4, 9)}, started  # not c2, c3 (first's), nor c9
+        out2 = run_tasks(second, st, workers=2, progress=False, chunk_size=1, ahead=lambda: third)
+        assert (out1.computed, out2.computed, out2.reused) == (4, 5, 3)
+        assert not runner._AHEAD.queued and {c.label for _, ch in runner._AHEAD.running.values()
+                                             for c in ch} <= {f"c{i}" for i in range(10, 16)}
+    assert not runner._AHEAD.running and not runner._AHEAD.queued  # dropped with the pool
+    solved = [line.split()[0] for line in _log(log)]
+    assert len(set(solved[:9])) == 9 and set(solved[:9]) == {f"c{i}" for i in range(9)}
+    for t in first + second:
+        if t.case.label != "c9":
+            assert out1.get(t.case, "fake") or out2.get(t.case, "fake")
+    with ResultStore(tmp_path / "r.sqlite", version="t") as ref:
+        serial = run_tasks(second, ref, workers=1, progress=False)
+    for t in second[2:7]:
+        assert out2.get(t.case, "fake").result["delta"] == serial.get(t.case, "fake").result["delta"]
+
+
 def test_exception_injected_midway_loses_and_repeats_nothing(tmp_path):
     """Stop after k stored results (as a crash would), rerun: only the missing ones are solved."""
     log = tmp_path / "log"

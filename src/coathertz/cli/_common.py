@@ -95,6 +95,13 @@ def case_from_args(args: argparse.Namespace) -> ContactCase:
     """:func:`_case_from_flags`, with ``--interface`` (when given) set on every coating."""
     case = _case_from_flags(args)
     interface = getattr(args, "interface", None)
+    if interface is not None:
+        for name in ("body1", "body2"):
+            if getattr(case, name).is_stacked:
+                raise CoatHertzError(
+                    f"--interface: {name} has a layer stack, whose interfaces are set per layer "
+                    f"(interface = ... in its [[{name}.layers]] tables, or --coating "
+                    "'E,nu,h,frictionless'); drop --interface")
     if interface is None or not case.is_coated:
         return case
 

@@ -15,9 +15,10 @@ from coathertz.errors import CoatHertzError
 
 
 def run_plastic(case: ContactCase, args: argparse.Namespace) -> int:
-    from coathertz.fem.method import axisymmetric_equivalent
+    from coathertz.fem.method import axisymmetric_equivalent, refuse_plastic_stack
     from coathertz.fem.plastic.method import PLASTIC_MESHES, solve_plastic, write_vtu_series
 
+    refuse_plastic_stack(case, "--plastic")
     eq = axisymmetric_equivalent(case)
     mats = eq.body.deformable_materials if eq is not None else ()
     if not any(m.plasticity is not None for m in mats):

@@ -126,12 +126,15 @@ def run(args: argparse.Namespace) -> int:
     ]
     ax = m["axis_max_von_mises"]
     rows.append(["max von Mises on axis [MPa]", f"{ax['value'] / 1e6:.5g}", f"z = {ax['z'] * 1e6:.2f} um"])
-    for side in ("coating", "substrate"):
-        if f"interface_{side}" in m:
-            d = m[f"interface_{side}"]
-            rows.append([f"interface ({side} side) max von Mises [MPa]", f"{d['max_von_mises'] / 1e6:.5g}",
+    sides = [(f"interface_{s}", f"interface ({s} side)") for s in ("coating", "substrate")]
+    for i in range(1, len(case.body1.layers) + len(case.body2.layers) + 1):  # a stack's interfaces
+        sides += [(f"interface{i}_{s}", f"interface {i} ({s})") for s in ("above", "below")]
+    for key, label in sides:
+        if key in m:
+            d = m[key]
+            rows.append([f"{label} max von Mises [MPa]", f"{d['max_von_mises'] / 1e6:.5g}",
                          f"r = {d['r_max_von_mises'] * 1e6:.2f} um"])
-            rows.append([f"interface ({side} side) max sigma_1 [MPa]", f"{d['max_sigma_1'] / 1e6:.5g}",
+            rows.append([f"{label} max sigma_1 [MPa]", f"{d['max_sigma_1'] / 1e6:.5g}",
                          f"r = {d['r_max_sigma_1'] * 1e6:.2f} um"])
     print(format_table(["", "value", f"/ Hertz ({norm.kind})"], rows))
     if args.vtu:

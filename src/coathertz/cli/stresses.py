@@ -7,8 +7,7 @@ import argparse
 from coathertz.cli._common import add_case_arguments
 
 NAME = "stresses"
-HELP = "stress field inside the coated body (FFT) and its maxima (von Mises, tension, interface)"
-METHODS = ("fft",)  # axisym and fem stresses: not exposed yet
+HELP = "stress field inside the coated body (FFT, exact or FE) and its maxima (von Mises, tension, interface)"
 
 
 def _depths(text: str) -> list[float]:
@@ -21,8 +20,13 @@ def _depths(text: str) -> list[float]:
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_case_arguments(parser)  # with --interface (the case's coating)
-    parser.add_argument("--method", default="fft", choices=METHODS, help="(default: fft)")
-    parser.add_argument("--grid", type=int, default=128, metavar="N", help="FFT cells per side")
+    from coathertz.stress_methods import STRESS_METHODS
+
+    parser.add_argument("--method", default="fft", choices=tuple(STRESS_METHODS),
+                        help="fft (DC-FFT, friction allowed), axisym (exact, frictionless, circular; "
+                             "any layer stack) or fem (axisymmetric FE, frictionless) (default: fft)")
+    parser.add_argument("--grid", type=int, default=128, metavar="N",
+                        help="FFT cells per side (axisym: the lattice of --png/--vtu)")
     parser.add_argument("--mu", type=float, default=0.0, metavar="M",
                         help="full sliding friction q = mu p along x on body2 (0 <= mu <= 1)")
     parser.add_argument("--Q", default=None, metavar="F",
@@ -49,8 +53,7 @@ def run(args: argparse.Namespace) -> int:
         to_json,
     )
     from coathertz.errors import CoatHertzError
-    from coathertz.fft.method import FFTMethod
-    from coathertz.fft.stresses import contact_stresses
+    from coathertz.stress_methods import StressOptions, check_depths, stress_method
     from coathertz.stress_summary import summarise
 
     if args.list_examples:
@@ -72,25 +75,19 @@ def run(args: argparse.Namespace) -> int:
     case = case_from_args(args)
     body = case.body2
     if args.depths is not None:
-        bottom = body.coating.h if (body.coating and body.material.is_rigid) else math.inf
-        bad = [z for z in args.depths if not (0 <= z <= bottom)]
-        if bad:
-            raise CoatHertzError(
-                f"--depths: body2 depth {bad[0] * 1e6:g} um outside the body "
-                f"(valid: 0 to {bottom * 1e6:g} um)")
-    res = FFTMethod(n=args.grid).solve(case)
-    kw = {"mu": args.mu, "Q": Q}
-    field = contact_stresses(case, res, depths=args.depths, **kw)
-    inter = None
-    if body.coating is not None:
-        inter = contact_stresses(case, res, depths=[body.coating.h], **kw).sigma[0]
-    summary = summarise(body, field.x, field.y, field.z, field.sigma, res.p0, inter)
-    _write_files(args, case, res, field)
+        check_depths(case, args.depths)
+    opt = StressOptions(grid=args.grid, mu=args.mu, Q=Q,
+                        depths=None if args.depths is None else tuple(args.depths),
+                        lattice=bool(args.png or args.vtu))
+    res = stress_method(args.method)(case, opt)
+    summary = summarise(body, res.x, res.y, res.z, res.sigma, res.p0, interfaces=res.interfaces)
+    _write_files(args, case, res)
     if args.json:
         print(to_json({"method": args.method, "mu": args.mu, "Q": Q, "a": res.a, "p0": res.p0,
-                       "depths": field.z.tolist(), **summary}))
+                       "depths": res.z.tolist(), **summary}))
         return 0
-    print(f"coathertz stresses: {case.label or 'case'}, FFT {args.grid}^2, {field.z.size} depths,"
+    grid = f"FFT {args.grid}^2" if args.method == "fft" else f"{res.label}, {res.x.size} radii"
+    print(f"coathertz stresses: {case.label or 'case'}, {grid}, {res.z.size} depths,"
           f" mu = {args.mu:g}, a = {res.a * 1e6:.4g} um, p0 = {res.p0 / 1e6:.5g} MPa")
     rows = []
     for key, e in summary.items():
@@ -103,18 +100,22 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _write_files(args: argparse.Namespace, case, res, field) -> None:
+def _write_files(args: argparse.Namespace, case, res) -> None:
     from coathertz.cli._common import writing
     from coathertz.stress_output import slice_figure, write_png, write_vtu
 
+    if res.lattice is None:
+        return
+    x, y, z, sigma = res.lattice
     if args.png:
-        coat = case.body2.coating
-        title = (f"{case.label or 'case'}: von Mises stress in body2, {args.method.upper()} "
-                 f"{args.grid}^2, mu = {args.mu:g}, p0 = {res.p0 / 1e6:.4g} MPa")
-        fig = slice_figure(field.x, field.y, field.z, field.sigma, a_x=res.r_a, a_y=res.r_b,
-                           h=None if coat is None else coat.h, title=title)
+        H = sum(L.h for L in case.body2.stack)
+        on = "" if args.method == "fft" else f" on {args.grid}^2"
+        title = (f"{case.label or 'case'}: von Mises stress in body2, {res.label}{on}, "
+                 f"mu = {args.mu:g}, p0 = {res.p0 / 1e6:.4g} MPa")
+        fig = slice_figure(x, y, z, sigma, a_x=res.r_a, a_y=res.r_b, h=H if H > 0 else None,
+                           title=title)
         with writing(args.png, "--png"):
             write_png(args.png, fig)
     if args.vtu:
         with writing(args.vtu, "--vtu"):
-            write_vtu(args.vtu, field.x, field.y, field.z, field.sigma)
+            write_vtu(args.vtu, x, y, z, sigma)

@@ -87,6 +87,19 @@ def check_scheduler(address: str) -> str:
     return address
 
 
+def _once(fn):
+    """``fn`` for its first call, then an empty list (a study calls the runner twice: its cases,
+    then its reference refinements; the next study's cases go ahead once)."""
+    calls = []
+
+    def call():
+        if calls:
+            return []
+        calls.append(1)
+        return fn()
+    return call
+
+
 def run(args: argparse.Namespace) -> int:
     from coathertz.cli._common import output_dir, writing
     from coathertz.errors import CoatHertzError
@@ -99,6 +112,7 @@ def run(args: argparse.Namespace) -> int:
     from coathertz.runner import worker_pool
     from coathertz.store import open_run_store
     from coathertz.verification import build_methods, get_study, run_study, studies
+    from coathertz.verification.running import study_tasks
 
     if args.list:
         for name, mod in studies().items():
@@ -150,8 +164,14 @@ def run(args: argparse.Namespace) -> int:
         # one pool of worker processes for all the studies (started once, caches kept)
         pool = worker_pool(args.workers) if args.scheduler is None else contextlib.nullcontext()
         with pool, saving(("png", "svg") if args.svg else ("png",), 1 if args.scheduler else args.workers):
-            for mod in mods:
-                r = run_study(mod, args.resolution, methods, store, opts)
+            # studies whose analysis solves in processes of its own (``RUN_EARLY``) first, so that
+            # the next studies' cases fill the workers it leaves idle; the report keeps the order
+            order = sorted(mods, key=lambda m: not getattr(m, "RUN_EARLY", False))
+            for i, mod in enumerate(order):
+                # the next study's cases start on the workers as this one's run out
+                nxt = order[i + 1] if i + 1 < len(order) and args.scheduler is None else None
+                r = run_study(mod, args.resolution, methods, store, {**opts, "ahead": _once(
+                    lambda m=nxt: study_tasks(m, args.resolution, methods) if m is not None else [])})
                 results.append(r)
                 n = len({x['case'] for x in r.rows})
                 print(study_line(r.name, n, r.computed, r.reused, r.wall_time) + "  claims: "
@@ -159,6 +179,7 @@ def run(args: argparse.Namespace) -> int:
                 with writing(figdir, "--out"):
                     figures[r.name] = plot_study(r, mod, figdir)
             t_studies = time.perf_counter()
+            results.sort(key=lambda r: [m.NAME for m in mods].index(r.name))
     except KeyboardInterrupt:
         print(f"coathertz verify: interrupted; {store.count()} results are in {store.path}; "
               "run the same command again to resume", file=sys.stderr)

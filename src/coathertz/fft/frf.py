@@ -100,6 +100,12 @@ class StackFRF:
         return self.layers[0].material
 
     @property
+    def top_fraction(self) -> float:
+        """The top layer's share of ``h_ref``: ``F(t)`` reaches its large-``t`` limit (the top
+        material's half-space) only as ``exp(-2 t top_fraction)``."""
+        return self.layers[0].h / self.h_ref
+
+    @property
     def F0(self) -> float:
         """``F(0) = E_top*/Es*``; 0 on a rigid substrate."""
         return 0.0 if self.substrate.is_rigid else self.coating.E_star / self.substrate.E_star

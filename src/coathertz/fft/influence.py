@@ -38,8 +38,10 @@ numerically in one of two ways:
   integrals are ``O((h/dx)^3)`` small.
 * ``h >= H_SWITCH`` cells: a radial Hankel transform
   ``g(r) = (1/2 pi) int u~_rem(w) J0(w r) w dw`` by composite Gauss--Legendre quadrature,
-  tabulated up to ``R_CUT h`` (cubic spline). Beyond that the ``r^-5, r^-7`` far field of the
-  ``t^3, t^5`` terms of ``rho`` is used. Each cell is integrated with 3 x 3 Gauss points
+  tabulated in ``s = r/h`` up to the grid's reach (rounded up to a power of ``2^(1/8)``) or
+  ``R_CUT h`` (cubic spline, 513 points; the table depends on the layer and the reach only and
+  is cached, so the nested grids of a solve share one). Beyond ``R_CUT h`` the ``r^-5, r^-7``
+  far field of the ``t^3, t^5`` terms of ``rho`` is used. Each cell is integrated with 3 x 3 Gauss points
   (2 x 2 once the kernel is 8 cells wide; the two differ by < 2e-7 of the largest
   coefficient). A frequency grid of spacing ``2 pi / L`` could not
   resolve a kernel wider than the domain; this branch has no images at all.
@@ -53,8 +55,9 @@ Both bodies may be coated: compliances add, so their coefficient arrays add.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cached_property, lru_cache
 
 import numpy as np
 from scipy import fft as sfft
@@ -143,7 +146,7 @@ class LayerSplit:
         gamma = F[2] + beta * c - (F0 - 1.0) * c * c / 2.0
         return cls(layer, F0, float(beta), float(gamma), c)
 
-    @property
+    @cached_property
     def rho_odd(self) -> tuple[float, float]:
         """Coefficients of ``t^3`` and ``t^5`` in ``rho(t)`` (they set its far field)."""
 
@@ -168,6 +171,12 @@ class LayerSplit:
         return out
 
 
+@lru_cache(maxsize=64)
+def _split_of(layer: Layer | StackFRF) -> LayerSplit:
+    """:meth:`LayerSplit.of`, cached per layer (its Taylor coefficients are Cauchy integrals)."""
+    return LayerSplit.of(layer)
+
+
 def _remainder_kspace(split: LayerSplit, h, nx, ny, dx, dy, oversample=2):
     Mx, My = oversample * 2 * nx, oversample * 2 * ny
     kx = 2 * np.pi * sfft.rfftfreq(Mx, dx)
@@ -179,28 +188,51 @@ def _remainder_kspace(split: LayerSplit, h, nx, ny, dx, dy, oversample=2):
     return g[: ny + 1, : nx + 1]
 
 
-def _remainder_space(split: LayerSplit, h, nx, ny, dx, dy):
-    rmax = np.hypot((nx + 1) * dx, (ny + 1) * dy)
-    rcut = min(rmax, R_CUT * h)
-    tmax = 32.0 / min(split.c, 2.0)
+#: Radial tables are made for reaches ``S = rcut / h`` rounded up to this ratio, so that the nested
+#: grids of one solve (same domain, same layer) and cases differing only in load share a table.
+S_STEP = 2.0 ** 0.125
+
+
+@lru_cache(maxsize=64)
+def _radial_table(split: LayerSplit, S: float) -> CubicSpline:
+    """``h^2 g(s)`` for ``s = r/h`` in ``[0, S]``: the remainder's radial Hankel transform
+    ``(1/2 pi) int rho(t) t J0(s t) dt`` (composite Gauss--Legendre, 16 nodes per panel, two
+    panels per period of ``J0`` at ``s = S``, up to ``t = 16`` where ``rho ~ e^{-2t}`` is below
+    1e-13, or ``16 h/h_top`` for a stack whose top layer is ``h_top`` thick), tabulated at 513
+    points (cubic spline). It depends on the layer and ``S`` only, not on ``h`` or the grid,
+    hence cached."""
+    # rho decays like exp(-2 t) for one layer; a stack's like exp(-2 t h_top/h) (its top layer)
+    tmax = 32.0 / min(split.c, 2.0) / getattr(split.layer, "top_fraction", 1.0)
     xg, wg = np.polynomial.legendre.leggauss(16)
-    panels = int(max(8, tmax * (rcut / h) / (4 * np.pi)))
+    panels = int(max(8, tmax * S / (4 * np.pi)))
     edges = np.linspace(0.0, tmax, panels + 1)
     half = 0.5 * np.diff(edges)
     t = (edges[:-1, None] + half[:, None] * (xg[None, :] + 1)).ravel()
     w = (half[:, None] * wg[None, :]).ravel()
-    rho = split.remainder(t)
-    r = np.linspace(0.0, rcut, 513)
-    vals = (j0(np.outer(r / h, t)) @ (rho * t * w)) / (2 * np.pi * h * h)
-    spline = CubicSpline(r, vals)
+    s = np.linspace(0.0, S, 513)
+    return CubicSpline(s, (j0(np.outer(s, t)) @ (split.remainder(t) * t * w)) / (2 * np.pi))
+
+
+def _table_reach(rmax_over_h: float) -> float:
+    """``S = rcut/h``: ``R_CUT``, or the grid's reach rounded up to a power of :data:`S_STEP`."""
+    if rmax_over_h >= R_CUT:
+        return R_CUT
+    return min(R_CUT, S_STEP ** math.ceil(math.log(rmax_over_h) / math.log(S_STEP) - 1e-9))
+
+
+def _remainder_space(split: LayerSplit, h, nx, ny, dx, dy):
+    rmax = np.hypot((nx + 1) * dx, (ny + 1) * dy)
+    S = _table_reach(rmax / h)
+    rcut = S * h
+    spline = _radial_table(split, S)
     # beyond rcut: far field of the |k|^3 and |k|^5 terms of rho (int k^4 J0 = 9/r^5,
     # int k^6 J0 = -225/r^7), matched to the table at rcut
     r3, r5 = split.rho_odd
     tail = (9.0 * r3 * h**3 / rcut**5 - 225.0 * r5 * h**5 / rcut**7) / (2 * np.pi)
-    scale_tail = vals[-1] / tail if tail != 0 and rcut < rmax else 1.0
+    scale_tail = float(spline(S)) / (h * h) / tail if tail != 0 and rcut < rmax else 1.0
 
     def g(rr):
-        out = spline(np.minimum(rr, rcut))
+        out = spline(np.minimum(rr, rcut) / h) / (h * h)
         far = rr > rcut
         if np.any(far):
             rf = rr[far]
@@ -238,7 +270,7 @@ def layer_coefficients(
         h = coating_body.coating.h
         layer = Layer(cmat, coating_body.material, interface)
     Ec = cmat.E_star
-    split = LayerSplit.of(layer)
+    split = _split_of(layer)
     a = split.c * h
     K = _love_unit(nx, ny, float(dx), float(dy)).copy()
     K += (split.F0 - 1.0) * _corner_sum(love_corner, nx, ny, dx, dy, a)
