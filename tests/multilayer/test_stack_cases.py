@@ -96,13 +96,19 @@ def test_methods_without_stacks_refuse(method, name):
 @pytest.mark.parametrize("example", ["dlc_crn_cr_on_steel", "tin_ti_on_steel", "graded_on_steel"])
 def test_stack_examples_self_converged(example):
     """Default settings against ~2x the modes, 16 nodes per panel and a cut-off at 30 a/h: <= 1e-9
-    (measured <= 2.3e-11 in a, <= 1.4e-12 in delta and p0)."""
+    (measured <= 2.3e-11 in a, <= 1.4e-12 in delta and p0). A layer thinner than 0.0088 a is solved
+    with edge functions (the Cr layer of dlc_crn_cr_on_steel, h/a = 0.0074), whose stated accuracy
+    in p0 is 1e-8 (measured 2.2e-9 here; delta and a 4e-13)."""
     from coathertz.casefile import load_example
 
     c = load_example(example)
     r = AxisymMethod(keep_fields=False).solve(c)
-    ref = AxisymMethod(keep_fields=False, n_modes=2 * r.meta["n_modes"] + 16, order=16, decay=30.0).solve(c)
-    assert rel(r, ref) < 1e-9, f"{example}: default vs refined differ by {rel(r, ref):.2e}"
+    ref = AxisymMethod(keep_fields=False, n_modes=2 * r.meta["n_modes"] + 16, order=16, decay=30.0,
+                       edge=False).solve(c)
+    tol = {"delta": 1e-9, "a": 1e-9, "p0": 1e-8 if r.meta["n_edge"] else 1e-9}
+    for q in QS:
+        d = abs(getattr(r, q) / getattr(ref, q) - 1.0)
+        assert d < tol[q], f"{example}: {q} default vs refined differ by {d:.2e}"
 
 
 def test_store_key_tells_stacks_apart():

@@ -139,7 +139,7 @@ def layer_factor_frictionless(coating: Material, substrate: Material) -> LayerFa
 #: Interpolation table of a stack's ``F``: Chebyshev panels of this width in ``log t``, this many
 #: nodes each, from ``t = STACK_T_MIN``; accepted only if it matches direct evaluation to
 #: ``STACK_TABLE_TOL`` at the panel midpoints (otherwise ``F`` is evaluated directly).
-STACK_PANEL, STACK_NODES, STACK_T_MIN, STACK_TABLE_TOL = 0.5, 16, 1e-12, 1e-13
+STACK_PANEL, STACK_NODES, STACK_T_MIN, STACK_TABLE_TOL = 0.5, 16, 1e-8, 1e-13
 
 
 class _StackTable:
@@ -155,7 +155,9 @@ class _StackTable:
         x = np.cos(np.pi * (np.arange(STACK_NODES) + 0.5) / STACK_NODES)  # Chebyshev points
         s = self.s0 + self.w * (np.arange(self.n_pan)[:, None] + 0.5 * (x[None, :] + 1.0))
         vals = F_direct(np.exp(s.ravel())).reshape(s.shape)
-        self.coef = np.stack([npcheb.chebfit(x, v, STACK_NODES - 1) for v in vals])
+        # interpolation at the Chebyshev points: one solve for all panels (was chebfit per panel)
+        V = npcheb.chebvander(x, STACK_NODES - 1)
+        self.coef = np.linalg.solve(V, vals.T).T
         mid = self.s0 + self.w * (np.arange(self.n_pan) + 0.37)
         t_mid = np.exp(mid)
         self.ok = bool(np.max(np.abs(self._interp(t_mid) - F_direct(t_mid))) < STACK_TABLE_TOL)

@@ -12,6 +12,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
+from coathertz.axisym.edge import edge_basis
 from coathertz.axisym.kernel import INTERFACES, pair_compliance
 from coathertz.axisym.solver import (
     XiRule,
@@ -47,6 +48,18 @@ def single_thread_blas() -> contextlib.AbstractContextManager:
 N_MIN, N_MAX = 32, 160
 
 
+#: Edge functions (``edge=True``): scales from ``h / EDGE_FINE`` up to ``EDGE_COARSE / (2N - 2)^2``.
+EDGE_FINE, EDGE_COARSE = 32.0, 200.0
+#: Edge functions replace the Legendre rule where it would need more modes than this
+#: (``h/a < (c_modes / EDGE_SWITCH)^2``, 0.0088 at the default ``c_modes``).
+EDGE_SWITCH = 96
+#: Below this ``h/a`` no edge functions: ``N_MIN`` Legendre modes with the energy edge condition
+#: leave ``a`` off by ~0.17 h/a (measured from 1e-7 to 1e-9 against the first-order trend of the
+#: enriched solutions: 8.5e-9 at 5e-8, 1.8e-9 at 1e-8), and the finest edge functions lose
+#: accuracy in p0 (5e-9 at 1e-8).
+EDGE_H_MIN = 2e-8
+
+
 def modes_needed(tau: float, c_modes: float = 9.0) -> int:
     """Legendre modes for thickness ratio ``tau = h_min / a``: ``c_modes / sqrt(tau)`` (the
     boundary layer of width ~h at the contact edge needs ``N^2 ~ a/h``), rounded up to a
@@ -74,6 +87,17 @@ class AxisymMethod:
         from ``h/a`` (:func:`default_modes` with ``c_modes``).
     c_modes
         Constant of the automatic rule ``N = c_modes / sqrt(h/a)``.
+    edge
+        Thin layers (the automatic rule asking for more than ``EDGE_SWITCH`` modes:
+        ``2e-8 <= h/a < 0.0088``): ``edge_modes`` Legendre modes (``n_modes`` if given)
+        enriched with edge functions ``exp((r/a - 1) a/L_j)``, the scales ``L_j`` geometric with
+        ratio ``edge_ratio`` from ``h/32`` up to the resolution of the Legendre modes
+        (:mod:`coathertz.axisym.edge`), and the smooth edge as stationarity of the load
+        (``edge_condition="energy"`` of :func:`~coathertz.axisym.solver.solve_at_radius`): cost
+        and accuracy no longer depend on ``h``. ``None`` (default): with automatic modes only;
+        ``False``: Legendre modes only (``N = c_modes / sqrt(h/a)``, capped at ``N_MAX``).
+    edge_modes, edge_ratio
+        Legendre modes and scale ratio of the edge functions with ``edge``.
     order, panel
         Gauss--Legendre nodes per panel and uniform panel width of the ``xi = k a`` quadrature.
     decay
@@ -88,6 +112,9 @@ class AxisymMethod:
     interface: str = "bonded"
     n_modes: int | None = None
     c_modes: float = 9.0
+    edge: bool | None = None
+    edge_modes: int = 64
+    edge_ratio: float = 1.25
     order: int = 8
     panel: float = 4.0
     decay: float = 14.0
@@ -105,9 +132,16 @@ class AxisymMethod:
         if self.interface not in INTERFACES:
             raise CoatHertzError(f"interface must be one of {INTERFACES}, got {self.interface!r}")
         if self.n_modes is not None and not (isinstance(self.n_modes, int) and 2 <= self.n_modes <= 400):
-            raise CoatHertzError(f"n_modes must be None or an integer in [2, 400], got {self.n_modes!r}")
+            raise CoatHertzError(f"axisym: n_modes (--modes) must be None or an integer in [2, 400], "
+                                 f"got {self.n_modes!r}")
         if not (isinstance(self.c_modes, float | int) and 1.0 <= self.c_modes <= 100.0):
             raise CoatHertzError(f"c_modes must be in [1, 100], got {self.c_modes!r}")
+        if not (self.edge is None or isinstance(self.edge, bool)):
+            raise CoatHertzError(f"edge must be None, True or False, got {self.edge!r}")
+        if not (isinstance(self.edge_modes, int) and 8 <= self.edge_modes <= 160):
+            raise CoatHertzError(f"edge_modes must be an integer in [8, 160], got {self.edge_modes!r}")
+        if not (isinstance(self.edge_ratio, float | int) and 1.1 <= self.edge_ratio <= 3.0):
+            raise CoatHertzError(f"edge_ratio must be in [1.1, 3], got {self.edge_ratio!r}")
         if not (isinstance(self.order, int) and 4 <= self.order <= 64):
             raise CoatHertzError(f"order must be an integer in [4, 64], got {self.order!r}")
         if not (isinstance(self.panel, float | int) and 0.1 <= self.panel <= 20.0):
@@ -129,10 +163,12 @@ class AxisymMethod:
 
     @classmethod
     def refined_settings(cls, resolution: str) -> dict[str, Any]:
-        """Twice the Legendre modes and four more ``xi`` nodes per panel: a study re-solves the
-        cases it marks ``refine`` with these, and the difference is this reference's numerical
-        uncertainty there (a convergence estimate, about 1e-9; see the package docstring)."""
-        return {**cls.settings_for(resolution), "c_modes": 2.0 * cls.c_modes, "order": cls.order + 4}
+        """Twice the Legendre modes, four more ``xi`` nodes per panel and, for thin layers, 96
+        Legendre modes with edge functions at ratio 1.15: a study re-solves the cases it marks
+        ``refine`` with these, and the difference is this reference's numerical uncertainty there
+        (a convergence estimate, about 1e-9; see the package docstring)."""
+        return {**cls.settings_for(resolution), "c_modes": 2.0 * cls.c_modes, "order": cls.order + 4,
+                "edge_modes": 96, "edge_ratio": 1.15}
 
     # Method protocol ---------------------------------------------------------------------------
     def settings(self) -> Mapping[str, Any]:
@@ -169,26 +205,53 @@ class AxisymMethod:
         rule = self._rule()
         a_init = initial_radius(pc, R, case.W)
         auto = self.n_modes is None
-        n_modes = default_modes(pc.h_min / a_init, self.c_modes) if auto else self.n_modes
-        sol, iters = solve_load(pc, R, case.W, n_modes, rule, self.decay, self.rtol, a_start=a_init)
-        if auto and default_modes(pc.h_min / sol.a, self.c_modes) > n_modes:
+        H_init = pc.h_min / a_init
+        use_edge = auto if self.edge is None else self.edge
+        layered = bool(pc.terms)
+        # three regimes (package docstring, "Thin layers"): edge functions where the Legendre rule
+        # would need more than EDGE_SWITCH modes; below EDGE_H_MIN the layer is invisible at 1e-8
+        # and N_MIN modes with the energy edge condition suffice; else Legendre modes, g(1) = 0
+        faint = auto and layered and H_init < EDGE_H_MIN
+        thin = (use_edge and layered and not faint
+                and modes_needed(H_init, self.c_modes) > EDGE_SWITCH)
+        beta = None
+        condition = "energy" if (thin or faint) else "point"
+        if thin:
+            n_modes = self.edge_modes if auto else self.n_modes
+            beta = edge_basis(H_init, n_modes, float(self.edge_ratio), EDGE_FINE, EDGE_COARSE).array()
+        elif faint:
+            n_modes = N_MIN
+        else:
+            n_modes = default_modes(H_init, self.c_modes) if auto else self.n_modes
+        sol, iters = solve_load(pc, R, case.W, n_modes, rule, self.decay, self.rtol, a_start=a_init,
+                                beta=beta, edge_condition=condition)
+        if auto and not (thin or faint) and default_modes(pc.h_min / sol.a, self.c_modes) > n_modes:
             # the estimate of a was too large: more modes at the converged radius
             n_modes = default_modes(pc.h_min / sol.a, self.c_modes)
-            sol, more = solve_load(pc, R, case.W, n_modes, rule, self.decay, self.rtol, a_start=sol.a)
+            sol, more = solve_load(pc, R, case.W, n_modes, rule, self.decay, self.rtol, a_start=sol.a,
+                                   edge_condition=condition)
             iters += more
         shape = pressure_shape(sol)
-        p0, r_p0 = peak_pressure(pc, sol, shape=shape)
+        rho_in = 0.5 * (1.0 - np.cos(np.linspace(0.0, math.pi, 121)))
+        p_in = None
+        if self.keep_fields:
+            p_in = pressure(pc, sol, rho_in, shape)
+        # with edge functions each pressure value costs a quadrature: the profile is the scan
+        scan = (rho_in, p_in) if (p_in is not None and sol.e.size) else None
+        p0, r_p0 = peak_pressure(pc, sol, shape=shape, scan=scan)
         meta: dict[str, Any] = {
             "r_p0": r_p0,
             "n_modes": n_modes,
             "n_xi": sol.n_xi,
+            "n_edge": int(sol.e.size),
+            "edge_condition": condition,
             "iterations": iters,
             "h_over_a": pc.h_min / sol.a if math.isfinite(pc.h_min) else None,  # None: uncoated
             "E_ref": pc.E_ref,
             "interface": interface,
             "settings": dict(self.settings()),
         }
-        if auto and modes_needed(pc.h_min / sol.a, self.c_modes) > 1.5 * N_MAX:
+        if auto and not (thin or faint) and modes_needed(pc.h_min / sol.a, self.c_modes) > 1.5 * N_MAX:
             msg = (f"h/a = {pc.h_min / sol.a:.3g}: the rule asks for "
                    f"{modes_needed(pc.h_min / sol.a, self.c_modes)} Legendre modes, capped at {N_MAX}; "
                    "a and p0 may be less accurate than 1e-8 (to refine, give more Legendre modes: "
@@ -198,10 +261,9 @@ class AxisymMethod:
         fields: dict[str, np.ndarray] = {}
         if self.keep_fields:
             x_end = direct_end(n_modes, rule)
-            rho_in = 0.5 * (1.0 - np.cos(np.linspace(0.0, math.pi, 121)))
             rho = np.concatenate([rho_in, np.linspace(1.0, 3.0, 25)[1:]])
             p = np.zeros_like(rho)
-            p[: rho_in.size] = pressure(pc, sol, rho_in, shape)
+            p[: rho_in.size] = p_in
             fields = {
                 "r": rho * sol.a,
                 "pressure": p,

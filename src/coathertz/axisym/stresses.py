@@ -90,8 +90,10 @@ from numpy.polynomial import legendre as npleg
 from scipy import special
 
 from coathertz.axisym.bessel import spherical_jn_all
+from coathertz.axisym.edge import edge_basis, psi_hat
 from coathertz.axisym.kernel import pair_compliance
-from coathertz.axisym.solver import RadiusSolution, XiRule, pressure, solve_at_radius
+from coathertz.axisym.method import EDGE_COARSE, EDGE_FINE
+from coathertz.axisym.solver import RadiusSolution, XiRule, initial_radius, pressure, solve_at_radius
 from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError
 from coathertz.materials import Body, Material
@@ -299,12 +301,16 @@ def _xi_nodes(X: float, width: float, order: int) -> tuple[np.ndarray, np.ndarra
     return (0.5 * (hi - lo) * zg + 0.5 * (hi + lo)).ravel(), (0.5 * (hi - lo) * wg).ravel()
 
 
-def _g_hat(c: np.ndarray, xi: np.ndarray, chunk: int = 4096) -> np.ndarray:
-    """``g^(xi) = sum_n (-1)^n c_n j_{2n}(xi)`` [m]."""
+def _g_hat(sol: RadiusSolution, xi: np.ndarray, chunk: int = 4096) -> np.ndarray:
+    """``g^(xi) = int_0^1 g(x) cos(xi x) dx = sum_n (-1)^n c_n j_{2n}(xi) + sum_j e_j Psi_j(xi)``
+    [m] (the second sum: the edge functions of a thin layer, :func:`coathertz.axisym.edge.psi_hat`)."""
+    c = sol.c
     d = c * (-1.0) ** np.arange(c.size)
     out = np.empty_like(xi)
     for i in range(0, xi.size, chunk):
         out[i:i + chunk] = d @ spherical_jn_all(2 * c.size - 2, xi[i:i + chunk])[::2]
+        if sol.e.size:
+            out[i:i + chunk] += sol.e @ psi_hat(sol.beta, xi[i:i + chunk])
     return out
 
 
@@ -345,8 +351,19 @@ class AxisymStresses:
         self.pc = pair_compliance(case, interface)
         st = result.meta["settings"]
         rule = XiRule(order=st["order"], panel=float(st["panel"]))
-        self.sol: RadiusSolution = solve_at_radius(self.pc, case.R, result.a, result.meta["n_modes"],
-                                                   rule, st["decay"])
+        beta = None
+        if result.meta.get("n_edge", 0):
+            # a thin layer solved with edge functions: the basis the method built from its first
+            # estimate of the radius (axisym/method.py), so that g is the method's own
+            H_init = self.pc.h_min / initial_radius(self.pc, case.R, case.W)
+            beta = edge_basis(H_init, result.meta["n_modes"], float(st["edge_ratio"]), EDGE_FINE,
+                              EDGE_COARSE).array()
+            if beta.size != result.meta["n_edge"]:
+                raise CoatHertzError(f"axisym stresses: the result has {result.meta['n_edge']} edge "
+                                     f"functions, its settings give {beta.size}")
+        self.sol: RadiusSolution = solve_at_radius(
+            self.pc, case.R, result.a, result.meta["n_modes"], rule, st["decay"], beta=beta,
+            edge_condition=result.meta.get("edge_condition", "point"))
         self.a = result.a
         self.scale = self.pc.E_ref / (math.pi * self.a)  # sigma = scale * int S g^ J xi dxi
 
@@ -432,7 +449,7 @@ class AxisymStresses:
             xs = xi[i:i + chunk]
             k = xs / a
             coef = self.response.coefficients(k)
-            base = _g_hat(self.sol.c, xs) * xs * w[i:i + chunk] * self.scale
+            base = _g_hat(self.sol, xs) * xs * w[i:i + chunk] * self.scale
             V = np.empty((4, xs.size, act.size))  # zz (J0), trace (J0), deviator (J2), rz (J1)
             for col, j in enumerate(act):
                 kk, pp, zz, kz = self.response.rows(k, coef, float(z[j]), side)
