@@ -97,7 +97,7 @@ CURVE_UNITS: dict[str, str] = {
     "W": "N", "delta": "m", "a": "m", "p_max": "Pa", "p_mean": "Pa", "newton_iterations": "",
     "cutbacks": "", "ep_max": "", "zone_r": "m", "zone_depth": "m", "phase": "", "residual_depth": "m",
     "cycle": "", "a_lo": "m", "a_hi": "m", "a_err": "m", "edge_exponent": "", "p_mean_lo": "Pa",
-    "p_mean_hi": "Pa",
+    "p_mean_hi": "Pa", "p_mean_err": "Pa",
 }
 
 
@@ -360,17 +360,17 @@ def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_sn
             a_edge = float(geom.r[inc.active].max())
             if a_edge > ZONE_FILL_MAX * r_zone:
                 raise ContactZoneExceeded(a_edge, r_zone, inc.W)
-            edge = edge_radius(geom.r, inc.gap, inc.active)  # one estimator, every increment
+            edge = edge_radius(geom.r, inc.lam, inc.active)  # one estimator, every increment
             a = edge["a"]
         delta = inc.delta
         if not inc.active.any():  # no contact: a = 0; under load control (W = 0, approach undefined)
             a = 0.0              # delta is where the sphere just touches the crater's bottom
             if not math.isfinite(delta):
                 delta = float(-state.u[top][0])
-            edge = {"a_lo": 0.0, "a_hi": 0.0, "a_err": 0.0, "m": math.nan}
+            edge = {"a_lo": 0.0, "a_hi": 0.0, "a_err": 0.0, "n": math.nan}
         for k in ("a_lo", "a_hi", "a_err"):
             curves[k].append(edge[k])
-        curves["edge_exponent"].append(edge["m"])
+        curves["edge_exponent"].append(edge["n"])
         curves["p_mean_lo"].append(inc.W / (math.pi * edge["a_hi"] ** 2) if edge["a_hi"] > 0 else 0.0)
         curves["p_mean_hi"].append(inc.W / (math.pi * edge["a_lo"] ** 2) if edge["a_lo"] > 0 else 0.0)
         z = _plastic_zone(asm, state.states)
@@ -379,6 +379,7 @@ def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_sn
         curves["a"].append(a)
         curves["p_max"].append(float(p.max()) if p.size else 0.0)
         curves["p_mean"].append(inc.W / (math.pi * a**2) if a > 0 else 0.0)
+        curves["p_mean_err"].append(2.0 * curves["p_mean"][-1] * edge["a_err"] / a if a > 0 else 0.0)
         curves["newton_iterations"].append(inc.newton_iterations)
         curves["cutbacks"].append(inc.cutbacks)
         curves["ep_max"].append(z["ep_max"])
