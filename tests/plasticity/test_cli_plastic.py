@@ -41,7 +41,7 @@ def test_cli_plastic_unload(tmp_path, capsys):
     for name in ("load_approach.png", "plastic_zone.png"):
         img = mpimg.imread(tmp_path / "fig" / name)
         assert img.shape[0] > 300 and img[..., :3].std() > 0.05, name  # not blank
-    assert len(list((tmp_path / "vtu").glob("*.vtu"))) == 2
+    assert len(list((tmp_path / "vtu").glob("*.vtu"))) == 3  # one per increment: onset, full load, unloaded
 
 
 def test_cli_plastic_approach_control(capsys):
