@@ -4,8 +4,18 @@
 :mod:`coathertz.fem.mesh`, far field and essential conditions of
 :class:`coathertz.fem.model.FEModel`), gives every region with ``Material.plasticity`` the J2
 law of :mod:`coathertz.fem.plastic.j2` (the others stay linear elastic), and follows a load path
-(loading in ``n_steps`` equal increments, optionally unloading to zero and reloading) with
-:class:`coathertz.fem.plastic.contact.IncrementalContact`. Small strain and the half-space
+with :class:`coathertz.fem.plastic.contact.IncrementalContact`:
+
+- loading to the load ``W`` (load control) or to the approach ``delta_max`` (approach control) in
+  ``n_steps`` equal increments or through explicit ``targets``; on a homogeneous body the first
+  increment ends at Hertz's first yield (:func:`_onset_target`) when that lies inside the first
+  step, so the first increment is elastic;
+- unloading (``unload``) always under load control, in ``n_steps`` equal load steps from the
+  largest load reached down to ``W = 0``: it ends where the contact is lost (the ``W = 0`` step is
+  solved without contact and gives the residual state), also after approach-controlled loading;
+- reloading (``reload``) back to the largest load, under load control.
+
+Small strain and the half-space
 idealisation are assumed: a/R > 0.1 is warned about and recorded.
 
 Outputs (:class:`PlasticResult`): per increment the load, approach, contact radius, maximum and
@@ -263,12 +273,14 @@ def solve_plastic(
         Tolerances and caps of the increment loop (default
         :class:`~coathertz.fem.plastic.contact.NewtonSettings` with ``rtol``).
     targets
-        Explicit loading targets [N] (increasing, ending at ``case.W``) instead of ``n_steps``
-        equal ones, e.g. geometric steps for deep indentation; unloading mirrors them.
+        Explicit loading targets instead of ``n_steps`` equal ones, e.g. geometric steps for deep
+        indentation: loads [N] increasing to ``case.W`` (unloading mirrors them), or with
+        ``delta_max`` approaches [m] increasing to ``delta_max``.
     delta_max
-        Approach control: ``n_steps`` equal approach increments to ``delta_max`` [m] (and back to
-        zero with ``unload``); the load comes out. ``case.W`` then only scales the residual
-        tolerance (the mesh is sized from ``delta_max``).
+        Approach control: ``n_steps`` equal approach increments (or ``targets``) to ``delta_max``
+        [m]; the load comes out. Unloading then runs under load control from the largest load.
+        ``case.W`` then only scales the residual tolerance (the mesh is sized from
+        ``delta_max``).
     max_growths
         When the contact reaches :data:`ZONE_FILL_MAX` of its candidate zone the path is solved
         again on a mesh with a larger reference radius (:data:`ZONE_GROWTH`), at most this many
