@@ -132,20 +132,6 @@ def _onset_target(body, R: float, control: str) -> float | None:
     return a_y**2 / R if control == "approach" else 4.0 * m.E_star * a_y**3 / (3.0 * R)
 
 
-def load_path(W_max: float, n_steps: int, unload: bool = False, reload: bool = False) -> list[float]:
-    """Targets: ``n_steps`` equal load increments to ``W_max``, then (``unload``) as many down to 0,
-    then (``reload``) back up to ``W_max``."""
-    if not (isinstance(n_steps, int) and 1 <= n_steps <= 10000):
-        raise CoatHertzError(f"n_steps must be an integer in [1, 10000], got {n_steps!r}")
-    up = [W_max * k / n_steps for k in range(1, n_steps + 1)]
-    path = list(up)
-    if unload or reload:
-        path += [W_max * (1 - k / n_steps) for k in range(1, n_steps + 1)]
-    if reload:
-        path += up
-    return path
-
-
 def _law(m: Material):
     if m.plasticity is None:
         return LinearElastic(m.E, m.nu)
