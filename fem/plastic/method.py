@@ -4,8 +4,18 @@
 :mod:`coathertz.fem.mesh`, far field and essential conditions of
 :class:`coathertz.fem.model.FEModel`), gives every region with ``Material.plasticity`` the J2
 law of :mod:`coathertz.fem.plastic.j2` (the others stay linear elastic), and follows a load path
-(loading in ``n_steps`` equal increments, optionally unloading to zero and reloading) with
-:class:`coathertz.fem.plastic.contact.IncrementalContact`. Small strain and the half-space
+with :class:`coathertz.fem.plastic.contact.IncrementalContact`:
+
+- loading to the load ``W`` (load control) or to the approach ``delta_max`` (approach control) in
+  ``n_steps`` equal increments or through explicit ``targets``; on a homogeneous body the first
+  increment ends at Hertz's first yield (:func:`_onset_target`) when that lies inside the first
+  step, so the first increment is elastic;
+- unloading (``unload``) always under load control, in ``n_steps`` equal load steps from the
+  largest load reached down to ``W = 0``: it ends where the contact is lost (the ``W = 0`` step is
+  solved without contact and gives the residual state), also after approach-controlled loading;
+- reloading (``reload``) back to the largest load, under load control.
+
+Small strain and the half-space
 idealisation are assumed: a/R > 0.1 is warned about and recorded.
 
 Outputs (:class:`PlasticResult`): per increment the load, approach, contact radius, maximum and
@@ -40,6 +50,7 @@ from coathertz.fem.plastic.assembly import BBarAssembler
 from coathertz.fem.plastic.contact import IncrementalContact, NewtonSettings, PathState, geometry_of
 from coathertz.fem.plastic.edge import edge_radius
 from coathertz.fem.plastic.j2 import J2Plastic, equivalent_stress
+from coathertz.fem.plastic.onset import hertz_axis_onset
 from coathertz.fem.post import stress_report, surface_pressure
 from coathertz.materials import Material
 from coathertz.validity import A_OVER_R_MAX
@@ -97,22 +108,28 @@ CURVE_UNITS: dict[str, str] = {
     "W": "N", "delta": "m", "a": "m", "p_max": "Pa", "p_mean": "Pa", "newton_iterations": "",
     "cutbacks": "", "ep_max": "", "zone_r": "m", "zone_depth": "m", "phase": "", "residual_depth": "m",
     "cycle": "", "a_lo": "m", "a_hi": "m", "a_err": "m", "edge_exponent": "", "p_mean_lo": "Pa",
-    "p_mean_hi": "Pa",
+    "p_mean_hi": "Pa", "p_mean_err": "Pa",
 }
 
 
-def load_path(W_max: float, n_steps: int, unload: bool = False, reload: bool = False) -> list[float]:
-    """Targets: ``n_steps`` equal load increments to ``W_max``, then (``unload``) as many down to 0,
-    then (``reload``) back up to ``W_max``."""
-    if not (isinstance(n_steps, int) and 1 <= n_steps <= 10000):
-        raise CoatHertzError(f"n_steps must be an integer in [1, 10000], got {n_steps!r}")
-    up = [W_max * k / n_steps for k in range(1, n_steps + 1)]
-    path = list(up)
-    if unload or reload:
-        path += [W_max * (1 - k / n_steps) for k in range(1, n_steps + 1)]
-    if reload:
-        path += up
-    return path
+#: The elastic onset becomes the first loading target when it lies below this fraction of the first
+#: equal step (else it is close enough to a target already).
+ONSET_FIRST = 0.9
+
+
+def _onset_target(body, R: float, control: str) -> float | None:
+    """First yield of an uncoated, homogeneous body under a rigid sphere of radius ``R`` [m]: the
+    load [N] (``control = "load"``) or approach [m] at which Hertz's p0 reaches ``p0_y``
+    (:func:`~coathertz.fem.plastic.onset.hertz_axis_onset`, first yield on the axis):
+    ``a_y = pi R p0_y / (2 E*)`` (Johnson eq 4.23 with 4.22), ``delta_y = a_y^2 / R``,
+    ``W_y = 4 E* a_y^3 / (3 R)``. ``None`` for a coated body (the onset then needs the elastic
+    solution; :mod:`~coathertz.fem.plastic.onset`) or one that does not yield."""
+    if body.is_coated or body.material.plasticity is None or body.material.is_rigid:
+        return None
+    m = body.material
+    p0_y = hertz_axis_onset(m.nu)[0] * m.plasticity.Y
+    a_y = math.pi * R * p0_y / (2.0 * m.E_star)
+    return a_y**2 / R if control == "approach" else 4.0 * m.E_star * a_y**3 / (3.0 * R)
 
 
 def _law(m: Material):
@@ -242,12 +259,14 @@ def solve_plastic(
         Tolerances and caps of the increment loop (default
         :class:`~coathertz.fem.plastic.contact.NewtonSettings` with ``rtol``).
     targets
-        Explicit loading targets [N] (increasing, ending at ``case.W``) instead of ``n_steps``
-        equal ones, e.g. geometric steps for deep indentation; unloading mirrors them.
+        Explicit loading targets instead of ``n_steps`` equal ones, e.g. geometric steps for deep
+        indentation: loads [N] increasing to ``case.W`` (unloading mirrors them), or with
+        ``delta_max`` approaches [m] increasing to ``delta_max``.
     delta_max
-        Approach control: ``n_steps`` equal approach increments to ``delta_max`` [m] (and back to
-        zero with ``unload``); the load comes out. ``case.W`` then only scales the residual
-        tolerance (the mesh is sized from ``delta_max``).
+        Approach control: ``n_steps`` equal approach increments (or ``targets``) to ``delta_max``
+        [m]; the load comes out. Unloading then runs under load control from the largest load.
+        ``case.W`` then only scales the residual tolerance (the mesh is sized from
+        ``delta_max``).
     max_growths
         When the contact reaches :data:`ZONE_FILL_MAX` of its candidate zone the path is solved
         again on a mesh with a larger reference radius (:data:`ZONE_GROWTH`), at most this many
@@ -331,20 +350,29 @@ def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_sn
 
     geom = geometry_of(model, lambda r: r**2 / (2.0 * R), a_hint)
     control = "load" if delta_max is None else "approach"
-    solver = IncrementalContact(asm, geom, control, W, newton or NewtonSettings(rtol=rtol))
+    settings = newton or NewtonSettings(rtol=rtol)
+    solver = IncrementalContact(asm, geom, control, W, settings)
+    if not (isinstance(n_steps, int) and 1 <= n_steps <= 10000):
+        raise CoatHertzError(f"n_steps must be an integer in [1, 10000], got {n_steps!r}")
     if control == "approach":
-        if not (isinstance(delta_max, int | float) and 0 < delta_max < math.inf) or targets is not None:
-            raise CoatHertzError(f"delta_max must be a length > 0 [m] (without targets), got {delta_max!r}")
-        targets = load_path(delta_max / eq.delta_factor, n_steps, unload or reload, reload)
+        top = delta_max / eq.delta_factor  # the model's approach
+        if targets is None:
+            up = [top * k / n_steps for k in range(1, n_steps + 1)]
+        else:
+            up = [float(t) / eq.delta_factor for t in targets]
+            if not (up and all(b > a for a, b in zip([0.0, *up], up, strict=False))
+                    and math.isclose(up[-1], top)):
+                raise CoatHertzError("targets must increase from > 0 to the approach delta_max [m]")
     elif targets is None:
-        targets = load_path(W, n_steps, unload or reload, reload)
+        up = [W * k / n_steps for k in range(1, n_steps + 1)]
     else:
         up = [float(t) for t in targets]
         if not (up and all(b > a for a, b in zip([0.0, *up], up, strict=False)) and math.isclose(up[-1], W)):
             raise CoatHertzError("targets must increase from > 0 to the case load W")
-        n_steps = len(up)
-        down = [*up[-2::-1], 0.0]
-        targets = up + (down if (unload or reload) else []) + (up if reload else [])
+    onset = _onset_target(body, eq.R, control)
+    if onset is not None and onset < ONSET_FIRST * up[0]:
+        up = [onset, *up]  # the first increment ends at first yield: elastic, then plastic
+    meta_targets = {"loading": list(up), "onset_target": onset}
     weights = model.weights_all[geom.cand]
     r_zone = float(geom.r[-1])
     top = model.top
@@ -361,17 +389,17 @@ def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_sn
             a_edge = float(geom.r[inc.active].max())
             if a_edge > ZONE_FILL_MAX * r_zone:
                 raise ContactZoneExceeded(a_edge, r_zone, inc.W)
-            edge = edge_radius(geom.r, inc.gap, inc.active)  # one estimator, every increment
+            edge = edge_radius(geom.r, inc.lam, inc.active)  # one estimator, every increment
             a = edge["a"]
         delta = inc.delta
         if not inc.active.any():  # no contact: a = 0; under load control (W = 0, approach undefined)
             a = 0.0              # delta is where the sphere just touches the crater's bottom
             if not math.isfinite(delta):
                 delta = float(-state.u[top][0])
-            edge = {"a_lo": 0.0, "a_hi": 0.0, "a_err": 0.0, "m": math.nan}
+            edge = {"a_lo": 0.0, "a_hi": 0.0, "a_err": 0.0, "n": math.nan}
         for k in ("a_lo", "a_hi", "a_err"):
             curves[k].append(edge[k])
-        curves["edge_exponent"].append(edge["m"])
+        curves["edge_exponent"].append(edge["n"])
         curves["p_mean_lo"].append(inc.W / (math.pi * edge["a_hi"] ** 2) if edge["a_hi"] > 0 else 0.0)
         curves["p_mean_hi"].append(inc.W / (math.pi * edge["a_lo"] ** 2) if edge["a_lo"] > 0 else 0.0)
         z = _plastic_zone(asm, state.states)
@@ -380,6 +408,7 @@ def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_sn
         curves["a"].append(a)
         curves["p_max"].append(float(p.max()) if p.size else 0.0)
         curves["p_mean"].append(inc.W / (math.pi * a**2) if a > 0 else 0.0)
+        curves["p_mean_err"].append(2.0 * curves["p_mean"][-1] * edge["a_err"] / a if a > 0 else 0.0)
         curves["newton_iterations"].append(inc.newton_iterations)
         curves["cutbacks"].append(inc.cutbacks)
         curves["ep_max"].append(z["ep_max"])
@@ -394,32 +423,52 @@ def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_sn
             snapshots.append((state.u.copy(), [{k: v.copy() for k, v in st.items()} for st in state.states],
                               inc.W))
 
-    phases = ["loading"] * n_steps + ["unloading"] * (n_steps if (unload or reload) else 0) + \
-        ["reloading"] * (n_steps if reload else 0)
-
     saved: dict[str, PathState] = {}
 
-    def on_increment(inc, state: PathState, k: int) -> None:
-        record(inc, state, phases[k])
-        if phases[k] == "unloading" and inc.W == 0.0:
-            saved["residual"] = state
-        if phases[k] == "loading" and k == n_steps - 1:
-            saved["loaded"] = state
-        if progress is not None:
-            progress(inc, phases[k])
+    def on_phase(phase: str):
+        def on_increment(inc, state: PathState, k: int) -> None:
+            record(inc, state, phase)
+            if phase == "unloading" and inc.W == 0.0:
+                saved["residual"] = state
+            if progress is not None:
+                progress(inc, phase)
+        return on_increment
 
-    path = solver.run(targets, progress=on_increment)
-    state = path.state
+    records = [solver.run(up, progress=on_phase("loading"))]
+    saved["loaded"] = records[0].state
+    W_top = float(curves["W"][-1])
+    if unload or reload:
+        # unloading under load control in as many equal load steps as the loading had: it ends
+        # where the contact is lost (W = 0, solved without contact: the residual state)
+        unloader = solver if control == "load" else IncrementalContact(asm, geom, "load", W, settings)
+        n_down = n_steps
+        down = [W_top * (1 - k / n_down) for k in range(1, n_down + 1)]
+        if control == "load" and targets is not None:
+            down = [*up[-2::-1], 0.0]  # explicit targets: unloading mirrors them
+        meta_targets["unloading"] = down
+        records.append(unloader.run(down, state=records[-1].state, start=W_top,
+                                    progress=on_phase("unloading")))
+        if reload:
+            back = [*reversed(down[:-1]), W_top]
+            meta_targets["reloading"] = back
+            records.append(unloader.run(back, state=records[-1].state, start=0.0,
+                                        progress=on_phase("reloading")))
+    state = records[-1].state
+    increments = [inc for rec_ in records for inc in rec_.increments]
+    factorisations = solver.factorisations
+    if (unload or reload) and unloader is not solver:
+        factorisations += unloader.factorisations
     mesh_d = {"n_a": spec.n_a, "r_fine": spec.r_fine, "t_fine": spec.t_fine, "growth": spec.growth,
               "L": spec.L}
     meta: dict = {
         "elements": lm.n_elements, "h": h, "dofs": int(model.n_u), "mesh": mesh_d, "a_ref": a_ref,
         "bbar": bbar,
         "n_steps": n_steps, "unload": bool(unload), "reload": bool(reload), "control": control,
-        "increments": len(path.increments), "factorisations": path.factorisations,
-        "wall_time": path.wall_time, "R_model": R, "delta_factor": eq.delta_factor,
+        "increments": len(increments), "factorisations": int(factorisations),
+        "wall_time": sum(rec_.wall_time for rec_ in records), "R_model": R, "delta_factor": eq.delta_factor,
+        "targets": meta_targets,
         "newton_iterations_total": int(sum(curves["newton_iterations"])),
-        "residual_histories": [list(inc.residuals) for inc in path.increments],
+        "residual_histories": [list(inc.residuals) for inc in increments],
         "yield": {("coating" if (h > 0 and k == 0) else "substrate"): m.plasticity.key()
                   for k, m in enumerate(mats) if m.plasticity is not None},
     }
@@ -430,7 +479,7 @@ def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_sn
         warnings.warn(msg, ModelValidityWarning, stacklevel=3)
         meta["validity"] = msg
     if locate_first_yield:
-        meta["first_yield"] = _first_yield_load(solver, asm, targets, curves)
+        meta["first_yield"] = _first_yield_load(solver, asm, up, curves)
     # final fields: stresses at the largest load and, after unloading, the residual state
     final: dict = {"plastic_zone": _plastic_zone(asm, state.states)}
     for name, st in (("loaded", saved.get("loaded")), ("residual", saved.get("residual"))):
