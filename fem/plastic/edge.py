@@ -70,8 +70,9 @@ _GX, _GW = np.polynomial.legendre.leggauss(10)
 
 
 def check_q2_layout(r: np.ndarray) -> None:
-    """Raise :class:`CoatHertzError` unless ``r`` are the nodes of consecutive Q2 edges: vertices at
-    even indices, mid-side nodes halfway between them (the surface of the FE model)."""
+    """Raise :class:`~coathertz.errors.CoatHertzError` unless ``r`` are the nodes of consecutive
+    Q2 edges: vertices at even indices, mid-side nodes halfway between them (the surface of the
+    FE model)."""
     if len(r) < 3 or len(r) % 2 == 0:
         raise CoatHertzError(f"contact candidates: expected the 2k+1 nodes of k Q2 surface edges, "
                              f"got {len(r)}")

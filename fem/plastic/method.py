@@ -8,7 +8,7 @@ with :class:`coathertz.fem.plastic.contact.IncrementalContact`:
 
 - loading to the load ``W`` (load control) or to the approach ``delta_max`` (approach control) in
   ``n_steps`` equal increments or through explicit ``targets``; on a homogeneous body the first
-  increment ends at Hertz's first yield (:func:`_onset_target`) when that lies inside the first
+  increment ends at Hertz's first yield (``_onset_target``) when that lies inside the first
   step, so the first increment is elastic;
 - unloading (``unload``) always under load control, in ``n_steps`` equal load steps from the
   largest load reached down to ``W = 0``: it ends where the contact is lost (the ``W = 0`` step is

@@ -57,7 +57,7 @@ def kogut_etsion_critical(E_star: float, Y: float, nu: float, R: float) -> tuple
 
 def kogut_etsion(delta: float, E_star: float, Y: float, nu: float, R: float) -> SphereFit:
     """Kogut & Etsion (2002) at interference ``delta`` [m] (valid for ``1 <= delta / delta_c <= 110``;
-    outside, :class:`CoatHertzError`)."""
+    outside, :class:`~coathertz.errors.CoatHertzError`)."""
     _check(E_star, Y, nu, R, delta)
     dc, Pc = kogut_etsion_critical(E_star, Y, nu, R)
     x = delta / dc
@@ -71,7 +71,7 @@ def kogut_etsion(delta: float, E_star: float, Y: float, nu: float, R: float) -> 
 
 def jackson_green(delta: float, E_star: float, Y: float, nu: float, R: float) -> SphereFit:
     """Jackson & Green (2005) at interference ``delta`` [m] (area fit valid for
-    ``delta / delta_c >= 1.9``; below, :class:`CoatHertzError`)."""
+    ``delta / delta_c >= 1.9``; below, :class:`~coathertz.errors.CoatHertzError`)."""
     _check(E_star, Y, nu, R, delta)
     C = 1.295 * math.exp(0.736 * nu)
     dc = (math.pi * C * Y / (2.0 * E_star)) ** 2 * R

@@ -296,7 +296,7 @@ def run_tasks(
     ahead
         The tasks of the *next* call (on the open :class:`worker_pool` only): once this call's
         own chunks are all submitted, the free slots start those not stored yet, so that the
-        workers keep solving while this process analyses and draws (see :class:`_Ahead`). The
+        workers keep solving while this process analyses and draws (see ``_Ahead``). The
         next call adopts them. Called at most once.
     """
     t_start = time.perf_counter()
@@ -564,7 +564,7 @@ def _run_processes(chunks: list, workers: int, record: Callable,
                    later: Callable[[], None] | None = None) -> None:
     """Run ``chunks`` on local processes and ``record`` each result; ``adopted``: futures already
     running (started ahead), recorded like the others; ``later``: queues the next call's work
-    (:class:`_Ahead`), started in the slots this call's chunks leave free at its end."""
+    (``_Ahead``), started in the slots this call's chunks leave free at its end."""
     workers = max(1, min(workers, max(len(chunks), 1), os.cpu_count() or 1))
     # the pool of an open worker_pool block, unless a worker of it died (a broken pool)
     shared = _POOL is not None and _POOL[1] >= workers and not getattr(_POOL[0], "_broken", False)

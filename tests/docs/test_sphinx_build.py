@@ -27,7 +27,8 @@ def test_docs_build_without_warnings():
     pytest.importorskip("sphinx", reason="the docs extra is not installed (pip install -e '.[docs]')")
     pytest.importorskip("myst_parser", reason="the docs extra is not installed (pip install -e '.[docs]')")
     args = readme_docs_command()
-    assert {"-W", "-n"} <= set(args), "warnings must be errors and references checked"
+    assert {"-E", "-W", "-n"} <= set(args), ("warnings must be errors and references checked, on every "
+                                            "page (-E: no page kept from an earlier build hides one)")
     out = subprocess.run([sys.executable, "-m", "sphinx", *args], cwd=ROOT, capture_output=True,
                          text=True, timeout=600)
     assert out.returncode == 0, out.stderr[-5000:]

@@ -322,7 +322,7 @@ def solve_at_radius(
         Decay rates of edge functions enriching the Legendre basis (thin layers,
         :mod:`coathertz.axisym.edge`); ``None``: Legendre modes only.
     edge_condition
-        ``energy`` (what :class:`~coathertz.axisym.AxisymMethod` uses for thin layers): the
+        ``energy`` (what :class:`~coathertz.axisym.method.AxisymMethod` uses for thin layers): the
         smooth edge as stationarity of the load at fixed ``delta``, ``dW/da|_delta = 0``, with
         ``W = 2 E_ref a (delta P_1 - q P_12)`` built from the Galerkin energies
         ``P_1 = <1, g_1>``, ``P_12 = <1, g_2> = <x^2, g_1>`` (``g_1``, ``g_2``: the solutions for
