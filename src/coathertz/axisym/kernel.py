@@ -161,7 +161,6 @@ class _StackTable:
         mid = self.s0 + self.w * (np.arange(self.n_pan) + 0.37)
         t_mid = np.exp(mid)
         self.ok = bool(np.max(np.abs(self._interp(t_mid) - F_direct(t_mid))) < STACK_TABLE_TOL)
-        self.F0 = float(F_direct(np.zeros(1))[0])
 
     def _interp(self, t: np.ndarray) -> np.ndarray:
         s = np.log(t)
