@@ -190,8 +190,13 @@ def tail_matrix(pc: PairCompliance, a: float, n_modes: int, X0: float, X1: float
     wm = 0.5 * w * pc.M(x / a) / (x * x)
     A = (S * wm) @ S.T + (C * wm) @ C.T
     # oscillating part: integration by parts at X0
-    s = xs[1] - xs[0]
-    g = 0.5 * pc.M(xs / a) / (xs * xs)
+    return A + _by_parts(0.5 * pc.M(xs / a) / (xs * xs), Z, xs[1] - xs[0], X0)
+
+
+def _by_parts(g: np.ndarray, Z: np.ndarray, s: float, X0: float) -> np.ndarray:
+    """Real part of ``int_X0^inf G(x) e^{2ix} dx`` by parts, ``G(x) = g(x) Z(x) Z(x)^T``, from its
+    values at the five points ``X0 + (j - 2) s`` (columns of ``Z``, entries of ``g``): ``G`` and
+    its first three derivatives at ``X0`` by fourth-order differences."""
     G = [g[j] * np.outer(Z[:, j], Z[:, j]) for j in range(5)]
     d0 = G[2]
     d1 = (G[0] - 8.0 * G[1] + 8.0 * G[3] - G[4]) / (12.0 * s)
@@ -199,7 +204,7 @@ def tail_matrix(pc: PairCompliance, a: float, n_modes: int, X0: float, X1: float
     d3 = (-G[0] + 2.0 * G[1] - 2.0 * G[3] + G[4]) / (2.0 * s**3)
     i2 = 2.0j
     osc = -np.exp(2.0j * X0) * (d0 / i2 - d1 / i2**2 + d2 / i2**3 - d3 / i2**4)
-    return A + osc.real
+    return osc.real
 
 
 # --- solution at a given contact radius ----------------------------------------------------------
@@ -257,16 +262,7 @@ def _tail_bilinear(fn, n_modes: int, beta: np.ndarray, X0: float, X1: float,
     wm = 0.5 * w * fn(x)
     Ur, Ui = U.real, U.imag
     A = (Ur * wm) @ Ur.T + (Ui * wm) @ Ui.T  # Re(U diag(wm) U^H) in real arithmetic
-    s = xs[1] - xs[0]
-    g = 0.5 * fn(xs)
-    G = [g[j] * np.outer(U5[:, j], U5[:, j]) for j in range(5)]
-    d0 = G[2]
-    d1 = (G[0] - 8.0 * G[1] + 8.0 * G[3] - G[4]) / (12.0 * s)
-    d2 = (-G[0] + 16.0 * G[1] - 30.0 * G[2] + 16.0 * G[3] - G[4]) / (12.0 * s * s)
-    d3 = (-G[0] + 2.0 * G[1] - 2.0 * G[3] + G[4]) / (2.0 * s**3)
-    i2 = 2.0j
-    osc = -np.exp(2.0j * X0) * (d0 / i2 - d1 / i2**2 + d2 / i2**3 - d3 / i2**4)
-    return A + osc.real
+    return A + _by_parts(0.5 * fn(xs), U5, xs[1] - xs[0], X0)
 
 
 _CONST: dict[tuple, np.ndarray] = {}
