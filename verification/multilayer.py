@@ -106,15 +106,15 @@ def analyse(result: C.StudyResult) -> None:
             worst < IDENTITY_BOUND, "%", 1e-6,
             judged_against=f"{', '.join(sorted({r['method'] for r in same}))} on {len(same)} cases"))
     checks = [d for d in result.crosscheck if not d["method"].endswith("-refined")]
-    for qs, bound, what in ((("delta", "p"), AGREE_BOUND["delta"], "delta and p0"),
-                            (("a",), AGREE_BOUND["a"], "a")):  # quantities named as in the cross-checks
+    for suffix, qs, bound, what in (("delta-p0", ("delta", "p"), AGREE_BOUND["delta"], "delta and p0"),
+                                    ("a", ("a",), AGREE_BOUND["a"], "a")):  # qs: the cross-checks' names
         mine = [d for d in checks if d["quantity"] in qs]
         if not mine:
             continue
         d = max(mine, key=lambda d: abs(d["diff"]))
         worst = abs(d["diff"])
         result.claims.append(C.Claim(
-            f"multilayer-methods-agree-{'-'.join(qs).replace('p', 'p0')}",
+            f"multilayer-methods-agree-{suffix}",
             f"max |difference| of the other methods (FFT, FE) from the exact method over the stacks, "
             f"{what} (the stack issue's bound)", worst, f"< {bound:g} %", worst < bound, "%", 0.05 * bound,
             f"largest: {d['pair']}, case {d['case']}",

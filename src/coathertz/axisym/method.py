@@ -244,6 +244,8 @@ class AxisymMethod:
             "n_modes": n_modes,
             "n_xi": sol.n_xi,
             "n_edge": int(sol.e.size),
+            # the edge functions' decay rates (thin layers): what rebuilds this g (axisym.stresses)
+            "edge_rates": [float(b) for b in sol.beta],
             "edge_condition": condition,
             "iterations": iters,
             "h_over_a": pc.h_min / sol.a if math.isfinite(pc.h_min) else None,  # None: uncoated

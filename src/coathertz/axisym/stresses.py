@@ -90,10 +90,9 @@ from numpy.polynomial import legendre as npleg
 from scipy import special
 
 from coathertz.axisym.bessel import spherical_jn_all
-from coathertz.axisym.edge import edge_basis, psi_hat
+from coathertz.axisym.edge import psi_hat
 from coathertz.axisym.kernel import pair_compliance
-from coathertz.axisym.method import EDGE_COARSE, EDGE_FINE
-from coathertz.axisym.solver import RadiusSolution, XiRule, initial_radius, pressure, solve_at_radius
+from coathertz.axisym.solver import RadiusSolution, XiRule, pressure, solve_at_radius
 from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError
 from coathertz.materials import Body, Material
@@ -352,15 +351,11 @@ class AxisymStresses:
         st = result.meta["settings"]
         rule = XiRule(order=st["order"], panel=float(st["panel"]))
         beta = None
-        if result.meta.get("n_edge", 0):
-            # a thin layer solved with edge functions: the basis the method built from its first
-            # estimate of the radius (axisym/method.py), so that g is the method's own
-            H_init = self.pc.h_min / initial_radius(self.pc, case.R, case.W)
-            beta = edge_basis(H_init, result.meta["n_modes"], float(st["edge_ratio"]), EDGE_FINE,
-                              EDGE_COARSE).array()
-            if beta.size != result.meta["n_edge"]:
-                raise CoatHertzError(f"axisym stresses: the result has {result.meta['n_edge']} edge "
-                                     f"functions, its settings give {beta.size}")
+        if result.meta.get("n_edge", 0):  # a thin layer solved with edge functions: the same g
+            if "edge_rates" not in result.meta:
+                raise CoatHertzError("axisym stresses: the result has edge functions but not their "
+                                     "rates (meta['edge_rates']); solve the case again")
+            beta = np.asarray(result.meta["edge_rates"], dtype=float)
         self.sol: RadiusSolution = solve_at_radius(
             self.pc, case.R, result.a, result.meta["n_modes"], rule, st["decay"], beta=beta,
             edge_condition=result.meta.get("edge_condition", "point"))
