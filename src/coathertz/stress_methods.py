@@ -6,7 +6,7 @@ field on an ``(x, y, z)`` lattice in the Voigt order of :mod:`coathertz.stress_s
 PNG and VTU files), the field the designer's maxima are read from, and the interface stresses.
 
 * ``fft``: DC-FFT solution and per-depth FFT of the layered responses
-  (:mod:`coathertz.fft.stresses`); friction (``mu``, ``Q``) allowed.
+  (:mod:`coathertz.fft.stresses`), any layer stack; friction (``mu``, ``Q``) allowed.
 * ``axisym``: the exact axisymmetric solution and its Hankel integrals
   (:mod:`coathertz.axisym.stresses`), frictionless only, any layer stack. The maxima are read
   on the ``r-z`` half-plane (radii clustered at the contact edge, where the surface tension
@@ -74,10 +74,11 @@ def fft_stresses(case: ContactCase, opt: StressOptions) -> StressResult:
     res = FFTMethod(n=opt.grid).solve(case)
     kw = {"mu": opt.mu, "Q": opt.Q}
     f = contact_stresses(case, res, depths=opt.depths, **kw)
-    coat = case.body2.coating
+    bottoms = np.cumsum([L.h for L in case.body2.stack if L.h > 0])  # every interface (stack)
     inter: tuple = ()
-    if coat is not None and coat.h > 0:
-        inter = ((coat.h, contact_stresses(case, res, depths=[coat.h], **kw).sigma[0]),)
+    if bottoms.size:
+        fi = contact_stresses(case, res, depths=bottoms, **kw)
+        inter = tuple((float(zb), fi.sigma[i]) for i, zb in enumerate(bottoms))
     lattice = (f.x, f.y, f.z, f.sigma) if opt.lattice else None
     return StressResult(f.x, f.y, f.z, f.sigma, inter, res.a, res.r_a, res.r_b, res.p0,
                         f"FFT {opt.grid}^2", lattice, dict(f.meta))

@@ -83,10 +83,11 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import fft as sfft
 
-from coathertz.case import ContactCase, refuse_stack
+from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError, ModelValidityWarning
 from coathertz.fft.frf import Layer, layer_system
 from coathertz.fft.grid import Grid
+from coathertz.fft.stack_stresses import StackStressFRF
 from coathertz.materials import Body
 from coathertz.results import ContactResult
 
@@ -225,7 +226,8 @@ class HomogeneousStressFRF:
 
 def stresses_surface(grid: Grid, depths, frf, p: np.ndarray | None = None,
                      qx: np.ndarray | None = None, qy: np.ndarray | None = None,
-                     pad: int = 4) -> np.ndarray:
+                     pad: int = 4, batch: int | None = None,
+                     out: np.ndarray | None = None, precision: str = "double") -> np.ndarray:
     """Six stress components [Pa] under surface tractions at each depth [m].
 
     Parameters
@@ -235,19 +237,41 @@ def stresses_surface(grid: Grid, depths, frf, p: np.ndarray | None = None,
     depths
         Depths ``z >= 0`` [m].
     frf
-        :class:`HomogeneousStressFRF` or :class:`CoatedStressFRF`.
+        :class:`HomogeneousStressFRF`, :class:`CoatedStressFRF` or
+        :class:`~coathertz.fft.stack_stresses.StackStressFRF`.
     p, qx, qy
         Cell pressure (compressive positive) and tangential tractions applied to the body in
         ``+x``, ``+y`` [Pa] (shape ``grid.shape``; ``None`` for none): ``sigma_zz(0) = -p``,
         ``sigma_xz(0) = -qx``, ``sigma_yz(0) = -qy``.
     pad
         Period of the FFT in domain widths (>= 2: zero padding, non-periodic).
+    batch
+        Depths per inverse transform (default: as many as fit in about 64 MB of spectra); the
+        working memory beyond ``out`` is about ``batch`` times ``96 pad^2 nx ny / 2`` bytes.
+    out
+        Optional array of shape ``(len(depths), 6, ny, nx)`` (float64) to write into.
+    precision
+        ``"double"`` (complex128 spectra and transforms) or ``"single"`` (complex64 spectra and
+        transforms, about twice as fast; the responses, the load spectra and the image
+        correction are still formed in double: round-off about 1e-7 of the largest stress).
 
     Returns
     -------
     ndarray
         Shape ``(len(depths), 6, ny, nx)``, components in :data:`COMPONENTS` order, at the
         cell centres.
+
+    Notes
+    -----
+    The responses depend on ``|k|`` only: they are evaluated once per distinct ``|k|`` of the
+    padded half-spectrum (22 090 of 131 584 at 128^2, pad 4) and gathered. With
+    ``Sigma = (T_kk + T_pp)/2``, ``Delta = (T_kk - T_pp)/2`` and ``c2 = cos 2 th``,
+    ``s2 = sin 2 th`` the in-plane rotation of the module docstring reads
+    ``sigma_xx, sigma_yy = Sigma +- (c2 Delta - s2 T_kp)``, ``sigma_xy = s2 Delta + c2 T_kp``; the
+    angle factors are folded into the load spectra once, so each depth costs a few real-times-
+    complex products per component. The spectra are laid out ``(k_x, k_y)`` so that the complex
+    transform along ``y`` runs over contiguous memory, keeps the ``ny`` rows of the body, and the
+    complex-to-real transform along ``x`` follows (the same as ``irfft2`` cropped).
     """
     depths = np.atleast_1d(np.asarray(depths, dtype=float))
     if np.any(~np.isfinite(depths)) or np.any(depths < 0):
@@ -259,73 +283,122 @@ def stresses_surface(grid: Grid, depths, frf, p: np.ndarray | None = None,
         if v is not None and np.shape(v) != (ny, nx):
             raise CoatHertzError(f"{name} shape {np.shape(v)} does not match the grid {(ny, nx)}")
     Ny, Nx = pad * ny, pad * nx
-    kx = 2 * np.pi * sfft.rfftfreq(Nx, grid.dx)[None, :]
-    ky = 2 * np.pi * sfft.fftfreq(Ny, grid.dy)[:, None]
+    Nk = Nx // 2 + 1
+    if out is None:
+        out = np.empty((depths.size, 6, ny, nx))
+    elif out.shape != (depths.size, 6, ny, nx):
+        raise CoatHertzError(f"out has shape {out.shape}, expected {(depths.size, 6, ny, nx)}")
+    if precision not in ("double", "single"):
+        raise CoatHertzError(f"precision must be 'double' or 'single', got {precision!r}")
+    cdt = np.complex128 if precision == "double" else np.complex64
+    per_depth = 6 * Nk * Ny * np.dtype(cdt).itemsize
+    if batch is None:
+        batch = max(1, min(depths.size, (64 << 20) // per_depth))
+    if not (isinstance(batch, int | np.integer) and batch >= 1):
+        raise CoatHertzError(f"batch must be an integer >= 1, got {batch!r}")
+    # layout (k_x, k_y): rfft along x, full along y
+    kx = 2 * np.pi * sfft.rfftfreq(Nx, grid.dx)[:, None]
+    ky = 2 * np.pi * sfft.fftfreq(Ny, grid.dy)[None, :]
     w = np.hypot(kx, ky)
-    safe = np.where(w > 0, w, 1.0)
-    c = np.where(w > 0, kx / safe, np.sqrt(0.5))
-    s = np.where(w > 0, ky / safe, np.sqrt(0.5))
+    w_u, inv = np.unique(w, return_inverse=True)
+    inv = inv.reshape(w.shape)
+    pos = w > 0
+    safe = np.where(pos, w, 1.0)
+    c = np.where(pos, kx / safe, np.sqrt(0.5))
+    s = np.where(pos, ky / safe, np.sqrt(0.5))
+    c2 = np.where(pos, c * c - s * s, 0.0)  # angular mean (0) at w = 0
+    s2 = np.where(pos, 2 * c * s, 0.0)
     cell = np.sinc(kx * grid.dx / (2 * np.pi)) * np.sinc(ky * grid.dy / (2 * np.pi))
     # Nyquist lines carry odd responses that a real field cannot hold: dropped for all
-    keep = np.ones_like(w)
     if Nx % 2 == 0:
-        keep[:, -1] = 0.0
+        cell[-1, :] = 0.0
     if Ny % 2 == 0:
-        keep[Ny // 2, :] = 0.0
-    cell = cell * keep
+        cell[:, Ny // 2] = 0.0
 
     def spectrum(v):
-        return None if v is None else sfft.rfft2(v, s=(Ny, Nx)) * cell
+        return None if v is None else sfft.rfft2(v, s=(Ny, Nx), workers=1).T * cell
 
     P, Qx, Qy = spectrum(p), spectrum(qx), spectrum(qy)
-    zero = np.zeros_like(w)
-    Qk = (c * (zero if Qx is None else Qx) + s * (zero if Qy is None else Qy))
-    Qp = (-s * (zero if Qx is None else Qx) + c * (zero if Qy is None else Qy))
     tangential = Qx is not None or Qy is not None
-    coef = frf.coefficients(w)
+    # load-angle spectra, one per term (radial row name, spectrum) of each group
+    terms: dict[str, list] = {"S": [], "X": [], "xy": [], "zz": [], "yz": [], "xz": []}
+    if P is not None:
+        terms["S"].append(("a_n", P))
+        terms["X"].append(("d_n", c2 * P))
+        terms["xy"].append(("d_n", s2 * P))
+        terms["zz"].append(("zz_n", P))
+        terms["yz"].append(("kz_n", -1j * s * P))
+        terms["xz"].append(("kz_n", -1j * c * P))
+    if tangential:
+        zero = np.zeros(w.shape)
+        Qx_, Qy_ = (zero if Qx is None else Qx), (zero if Qy is None else Qy)
+        Qk, Qp = c * Qx_ + s * Qy_, -s * Qx_ + c * Qy_
+        oQk = -1j * np.where(pos, 1.0, 0.0) * Qk  # odd responses vanish at w = 0
+        iQp = 1j * np.where(pos, 1.0, 0.0) * Qp
+        terms["S"].append(("a_t", oQk))
+        terms["X"] += [("d_t", c2 * oQk), ("kp", -s2 * iQp)]
+        terms["xy"] += [("d_t", s2 * oQk), ("kp", c2 * iQp)]
+        terms["zz"].append(("zz_t", oQk))
+        terms["yz"] += [("kz_t", -s * Qk), ("pz", c * Qp)]
+        terms["xz"] += [("kz_t", -c * Qk), ("pz", -s * Qp)]
+    needed = {name for group in terms.values() for name, _ in group}
+    terms = {k: [(name, spec.astype(cdt)) for name, spec in group] for k, group in terms.items()}
+    coef = frf.coefficients(w_u)
     Px, Py = Nx * grid.dx, Ny * grid.dy
     W = 0.0 if P is None else float(np.real(P[0, 0])) * grid.dx * grid.dy  # load [N]
     eps = 1e-4 / max(Px, Py)
+    we = np.array([eps, 2 * eps])
+    coef_e = frf.coefficients(we) if W else None
     lattice = _lattice_sum3(Px, Py)
-    out = np.empty((depths.size, 6, ny, nx))
-    for i, z in enumerate(depths):
-        rows = frf.at(w, z, coef)
-        Tkk = Tpp = Tzz = Tkz = Tpz = Tkp = 0.0
-        if P is not None:
+    buf = np.empty((batch, 6, Nk, Ny), dtype=cdt)
+    tmp = np.empty((Nk, Ny), dtype=cdt)
+
+    def accumulate(dst, group, radial):
+        if not group:
+            dst[...] = 0.0
+            return
+        for m, (name, spec) in enumerate(group):
+            if m == 0:
+                np.multiply(radial[name], spec, out=dst)
+            else:
+                np.multiply(radial[name], spec, out=tmp)
+                dst += tmp
+
+    for i0 in range(0, depths.size, batch):
+        zs = depths[i0:i0 + batch]
+        for b, z in enumerate(zs):
+            rows = frf.at(w_u, z, coef)
             kk, pp, zz, kz = rows.normal
-            kk, pp = kk.copy(), pp.copy()
-            kk[0, 0] = pp[0, 0] = 0.5 * (kk[0, 0] + pp[0, 0])  # angular mean at w = 0
-            Tkk, Tpp, Tzz, Tkz = kk * P, pp * P, zz * P, -1j * kz * P
-        if tangential:
-            kk, pp, zz, kz = rows.tangential
-            odd = -1j * np.where(w > 0, 1.0, 0.0)  # odd responses vanish at w = 0
-            Tkk = Tkk + odd * kk * Qk
-            Tpp = Tpp + odd * pp * Qk
-            Tzz = Tzz + odd * zz * Qk
-            Tkz = Tkz - kz * Qk
-            kp, pz = rows.antiplane
-            Tpz = pz * Qp
-            Tkp = 1j * kp * Qp * np.where(w > 0, 1.0, 0.0)
-        comps = (
-            c * c * Tkk + s * s * Tpp - 2 * c * s * Tkp,
-            s * s * Tkk + c * c * Tpp + 2 * c * s * Tkp,
-            Tzz,
-            s * Tkz + c * Tpz,
-            c * Tkz - s * Tpz,
-            c * s * (Tkk - Tpp) + (c * c - s * s) * Tkp,
-        )
+            rad = {"a_n": 0.5 * (kk + pp), "d_n": 0.5 * (kk - pp), "zz_n": zz, "kz_n": kz}
+            if tangential:
+                kk, pp, zz, kz = rows.tangential
+                rad.update({"a_t": 0.5 * (kk + pp), "d_t": 0.5 * (kk - pp), "zz_t": zz,
+                            "kz_t": kz, "kp": rows.antiplane[0], "pz": rows.antiplane[1]})
+            # complex radial rows: complex x complex products run faster than mixed ones
+            radial = {name: np.take(rad[name].astype(cdt), inv) for name in needed}
+            B = buf[b]
+            accumulate(B[0], terms["S"], radial)  # Sigma, in xx for now
+            accumulate(B[1], terms["X"], radial)  # X = c2 Delta - s2 T_kp
+            np.subtract(B[0], B[1], out=tmp)
+            B[0] += B[1]  # sigma_xx = Sigma + X
+            B[1] = tmp  # sigma_yy = Sigma - X
+            accumulate(B[2], terms["zz"], radial)
+            accumulate(B[3], terms["yz"], radial)
+            accumulate(B[4], terms["xz"], radial)
+            accumulate(B[5], terms["xy"], radial)
+        nb = zs.size
         # pruned inverse: complex transform along y, keep the ny rows of the body, then
         # complex-to-real along x (the same as irfft2 cropped, about half the work)
-        full = np.stack([np.broadcast_to(spec, w.shape) for spec in comps])
-        rows_y = sfft.ifft(full, axis=1)[:, :ny]
-        out[i] = sfft.irfft(rows_y, n=Nx, axis=2)[:, :, :nx]
+        cols = sfft.ifft(buf[:nb], axis=-1, overwrite_x=True, workers=1)[..., :ny]
+        cols = np.ascontiguousarray(cols.transpose(0, 1, 3, 2))  # (nb, 6, ny, Nk)
+        out[i0:i0 + nb] = sfft.irfft(cols, n=Nx, axis=-1, overwrite_x=True, workers=1)[..., :nx]
         if W:
-            we = np.array([eps, 2 * eps])
-            n_kk, n_pp = frf.at(we, z).normal[:2]
-            T1 = ((n_kk[1] + n_pp[1]) - (n_kk[0] + n_pp[0])) / eps
-            shift = -W * T1 * lattice / (4 * np.pi)  # images' share of sigma_xx, sigma_yy
-            out[i, 0] -= shift
-            out[i, 1] -= shift
+            for b, z in enumerate(zs):
+                n_kk, n_pp = frf.at(we, z, coef_e).normal[:2]
+                T1 = ((n_kk[1] + n_pp[1]) - (n_kk[0] + n_pp[0])) / eps
+                shift = -W * T1 * lattice / (4 * np.pi)  # images' share of sigma_xx, sigma_yy
+                out[i0 + b, 0] -= shift
+                out[i0 + b, 1] -= shift
     return out
 
 
@@ -369,31 +442,42 @@ class StressField:
 
 
 def body_frf(body: Body, interface: str = "bonded"):
-    """The stress responses of ``body``: homogeneous or coated (one coating)."""
+    """The stress responses of ``body``: homogeneous, coated (one coating, with ``interface``) or
+    a layer stack (each layer's own interface, :class:`~coathertz.fft.stack_stresses.StackStressFRF`)."""
     if body.is_stacked:
-        raise CoatHertzError("fft stresses: a layer stack is not modelled yet (one coating at most)")
-    if body.material.is_rigid and body.coating is None:
+        return StackStressFRF.of(body.layers, body.material)
+    if body.material.is_rigid and not body.is_coated:
         raise CoatHertzError("the body is rigid: it has no stress field")
-    if body.coating is None:
+    if not body.is_coated:
         return HomogeneousStressFRF(body.material.nu)
     return CoatedStressFRF(Layer(body.coating.material, body.material, interface), body.coating.h)
 
 
-def default_depths(body: Body, a: float) -> np.ndarray:
-    """Depths [m]: dense in the coating (16 steps), both sides of its interface, and to 3a.
+def layers_depth(body: Body) -> float:
+    """Total thickness [m] of the body's coating or layer stack (0 if none)."""
+    return float(sum(L.h for L in body.stack))
 
-    Homogeneous: 0 to a in 40 steps (the Hertz maximum at 0.48a), a to 3a in 20. Coated
-    (thickness h): 0 to h in 16 steps, ``h`` (coating side) and ``h (1 + 1e-9)`` (substrate
-    side), then geometric steps to ``max(3a, 2h)`` (or to h on a rigid substrate).
+
+def default_depths(body: Body, a: float) -> np.ndarray:
+    """Depths [m]: dense in each layer (16 steps), both sides of each interface, and to 3a.
+
+    Homogeneous: 0 to a in 40 steps (the Hertz maximum at 0.48a), a to 3a in 20. Coated or
+    stacked (total thickness ``H``): 16 steps through each layer, each interface depth (the
+    layer above) and ``1e-9`` of it deeper (the layer below), then 32 geometric steps from
+    ``H (1 + 1e-9)`` to ``max(3a, 2H)`` (none on a rigid substrate).
     """
-    if body.coating is None:
+    parts = [L for L in body.stack if L.h > 0]
+    if not parts:
         return np.concatenate([np.linspace(0, a, 41), np.linspace(a, 3 * a, 21)[1:]])
-    h = body.coating.h
-    top = np.linspace(0, h, 17)
-    if body.material.is_rigid:
-        return top
-    deep = np.geomspace(h * (1 + 1e-9), max(3 * a, 2 * h), 32)
-    return np.concatenate([top, deep])
+    zs, z0 = [np.zeros(1)], 0.0
+    for i, L in enumerate(parts):
+        if i:  # the lower side of the interface above
+            zs.append(np.array([z0 * (1 + 1e-9)]))
+        zs.append(z0 + np.linspace(0, L.h, 17)[1:])
+        z0 += L.h
+    if not body.material.is_rigid:
+        zs.append(np.geomspace(z0 * (1 + 1e-9), max(3 * a, 2 * z0), 32))
+    return np.concatenate(zs)
 
 
 #: Default period in domain widths, and the largest the automatic rule of :func:`image_pad` takes.
@@ -412,9 +496,10 @@ def image_pad(body: Body, grid: Grid, pad: int | None = None) -> tuple[int, floa
     """The period (in domain widths) for the stresses of ``body``, and its image error estimate
     ``IMAGE_C (h/P)^3`` [p0]: ``pad`` if given, else the smallest of ``PAD .. PAD_MAX`` with an
     estimate under ``IMAGE_TOL`` (or ``PAD_MAX``). Only a coating on an elastic substrate has
-    the effect (a rigid base's field decays exponentially beyond it)."""
+    the effect (a rigid base's field decays exponentially beyond it); a stack counts with its
+    total thickness."""
     L = max(grid.nx * grid.dx, grid.ny * grid.dy)
-    h = body.coating.h if body.coating is not None and not body.material.is_rigid else 0.0
+    h = layers_depth(body) if not body.material.is_rigid else 0.0
 
     def estimate(n: int) -> float:
         return IMAGE_C * (h / (n * L)) ** 3
@@ -446,20 +531,24 @@ def contact_stresses(case: ContactCase, result: ContactResult, *, body: int = 2,
         raise CoatHertzError(f"friction coefficient mu must be in [0, 1], got {mu!r}")
     if "pressure" not in result.fields:
         raise CoatHertzError("the FFT result has no pressure field (solve with keep_fields=True)")
-    refuse_stack(case, "fft stresses")
     b = case.body1 if body == 1 else case.body2
+    if b.is_stacked and interface != "bonded":
+        raise CoatHertzError(
+            f"fft stresses: body{body} has a stack of {len(b.layers)} layers, whose interfaces are "
+            f"set per layer (Layer.interface), not by interface={interface!r}")
     interface = case.interface_for(interface)  # a frictionless coating in the case is kept
     frf = body_frf(b, interface)
     x, y, p = result.fields["x"], result.fields["y"], result.fields["pressure"]
     grid = Grid(len(x), len(y), float(x[1] - x[0]), float(y[1] - y[0]))
     z = default_depths(b, result.a) if depths is None else np.asarray(depths, dtype=float)
-    if b.coating is not None and b.material.is_rigid and np.any(z > b.coating.h):
+    H = layers_depth(b)
+    if b.material.is_rigid and np.any(z > H * (1 + 1e-12)):
         raise CoatHertzError(
-            f"body{body}: depths must be in [0, h = {b.coating.h:g}] m on a rigid substrate")
+            f"body{body}: depths must be in [0, {H:g}] m (the layers' bottom) on a rigid substrate")
     pad, image_error = image_pad(b, grid, pad)
     if image_error > 0.005:
         warnings.warn(
-            f"body{body}: the coating (h = {b.coating.h:g} m) is thick against the FFT period "
+            f"body{body}: the layers (H = {H:g} m) are thick against the FFT period "
             f"({pad} domain widths): the lateral stresses may be off by about "
             f"{100 * image_error:.2g} % of p0 (from the periodic images of the field)",
             ModelValidityWarning, stacklevel=2)
