@@ -23,8 +23,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     from coathertz.stress_methods import STRESS_METHODS
 
     parser.add_argument("--method", default="fft", choices=tuple(STRESS_METHODS),
-                        help="fft (DC-FFT, friction allowed), axisym (exact, frictionless, circular; "
-                             "any layer stack) or fem (axisymmetric FE, frictionless) (default: fft)")
+                        help="fft (DC-FFT, friction allowed, any layer stack), axisym (exact, "
+                             "frictionless, circular; any layer stack) or fem (axisymmetric FE, "
+                             "frictionless) (default: fft)")
     parser.add_argument("--grid", type=int, default=128, metavar="N",
                         help="FFT cells per side (axisym: the lattice of --png/--vtu)")
     parser.add_argument("--mu", type=float, default=0.0, metavar="M",

@@ -79,6 +79,18 @@ T_MIN = 1e-6
 
 
 @dataclass(frozen=True)
+class StackCoefficients:
+    """Basis coefficients per wavenumber (last axis): ``layers[j]`` ``(4, 2, n)`` (basis function,
+    load normal/tangential), ``sub`` ``(2, 2, n)`` (``None`` on a rigid base), ``anti[j]``
+    ``(2, n)`` (``alpha, beta``), ``anti_sub`` ``(n,)``."""
+
+    layers: list
+    sub: np.ndarray | None
+    anti: list
+    anti_sub: np.ndarray | None
+
+
+@dataclass(frozen=True)
 class StackStressFRF:
     """Stress responses of ``layers`` (top first, :class:`~coathertz.stack.StackLayer`: material,
     thickness [m], interface of the lower face) on ``substrate`` (``RIGID`` allowed).
@@ -123,10 +135,9 @@ class StackStressFRF:
     def _w(self, w) -> np.ndarray:
         return np.maximum(np.asarray(w, dtype=float), T_MIN / self.depth)
 
-    def coefficients(self, w) -> tuple[list, np.ndarray | None, list, np.ndarray | None]:
-        """Coefficients per wavenumber ``w`` [1/m] (1-D): in-plane ``(n, 4, 2)`` per layer (basis
-        function, load normal/tangential) and ``(n, 2, 2)`` for an elastic substrate; antiplane
-        ``(n, 2)`` (``alpha, beta``) per layer and ``(n,)`` for the substrate."""
+    def coefficients(self, w) -> StackCoefficients:
+        """:class:`StackCoefficients` of each layer and the substrate per wavenumber ``w`` [1/m]
+        (1-D)."""
         w = self._w(w).ravel()
         n = w.size
         top = self.layers[0].material
@@ -218,7 +229,11 @@ class StackStressFRF:
                 a0, b0 = anti[-1][:, 0], anti[-1][:, 1]
                 e0 = np.exp(-w * last.h)
                 anti_sub = (a0 * e0 + b0) * (self.substrate.G / last.material.G)
-        return layer_coef, sub_coef, anti, anti_sub
+        def cont(a):  # (n, ...) -> (..., n), contiguous along w
+            return None if a is None else np.ascontiguousarray(np.moveaxis(a, 0, -1))
+
+        return StackCoefficients([cont(c) for c in layer_coef], cont(sub_coef),
+                                 [cont(a) for a in anti], anti_sub)
 
     def layer_index(self, z: float) -> int:
         """Index of the layer holding depth ``z`` [m] (an interface depth: the layer above;
@@ -233,28 +248,28 @@ class StackStressFRF:
         w = self._w(w)
         if coef is None:
             coef = self.coefficients(w)
-        layer_coef, sub_coef, anti, anti_sub = coef
         j = self.layer_index(z)
         if j < len(self.layers):
             L = self.layers[j]
             s = w * (z - self.tops[j])
-            t = w * L.h
-            u = t - s
+            u = w * L.h - s
             e1, e2 = np.exp(-s), np.exp(-u)
             nu = L.material.nu
-            cf = layer_coef[j]  # (n, 4, 2)
+            cf = coef.layers[j]  # (4, 2, n)
             out = []
             for m in range(2):
-                c1, c2, c3, c4 = (cf[:, i, m] for i in range(4))
-                pa, pb = (c1 + c2 * s) * e1, (c3 + c4 * u) * e2
-                f0 = pa + pb
-                f1 = (c2 - c1 - c2 * s) * e1 + (c3 - c4 + c4 * u) * e2
-                f2 = pa - 2.0 * c2 * e1 + pb - 2.0 * c4 * e2
-                out.append((f2, nu * (f2 - f0), -f0, f1))
-            al, be = anti[j][:, 0], anti[j][:, 1]
-            V = al * e1 + be * e2
-            dV = -al * e1 + be * e2
-            return StressRows(out[0], out[1], (V, dV))
+                c1, c2, c3, c4 = cf[:, m]
+                # f = (c1 + c2 s) e1 + (c3 + c4 u) e2; f' = c2 e1 - g + h - c4 e2;
+                # f'' = f - 2 (c2 e1 + c4 e2)
+                g, h = (c1 + c2 * s) * e1, (c3 + c4 * u) * e2
+                m1, m2 = c2 * e1, c4 * e2
+                f0 = g + h
+                f1 = (m1 - m2) + (h - g)
+                msum = m1 + m2
+                out.append((f0 - 2.0 * msum, (-2.0 * nu) * msum, -f0, f1))
+            al, be = coef.anti[j]
+            a1, b2 = al * e1, be * e2
+            return StressRows(out[0], out[1], (a1 + b2, b2 - a1))
         if self.substrate.is_rigid:
             raise CoatHertzError(
                 f"fft stresses: depth z = {z:g} m lies in the rigid substrate "
@@ -264,10 +279,9 @@ class StackStressFRF:
         nu = self.substrate.nu
         out = []
         for m in range(2):
-            c1, c2 = sub_coef[:, 0, m], sub_coef[:, 1, m]
+            c1, c2 = coef.sub[:, m]
             f0 = (c1 + c2 * s) * e1
-            f1 = (c2 - c1 - c2 * s) * e1
-            f2 = f0 - 2.0 * c2 * e1
-            out.append((f2, nu * (f2 - f0), -f0, f1))
-        V = anti_sub * e1
+            m1 = c2 * e1
+            out.append((f0 - 2.0 * m1, (-2.0 * nu) * m1, -f0, m1 - f0))
+        V = coef.anti_sub * e1
         return StressRows(out[0], out[1], (V, -V))

@@ -96,19 +96,6 @@ COMPONENTS = ("xx", "yy", "zz", "yz", "xz", "xy")
 T_MIN = 1e-6  # smallest w h solved (the 6 x 6 system degenerates at t = 0; w = 0 only)
 
 
-def _rows_stress(z, nu, E, kind):
-    """(S_kk, S_pp, S_zz, S_kz) of one basis function at scaled depth ``z`` (k = 1)."""
-    if kind == "A":
-        return (-E, 0.0 * E, E, E)
-    if kind == "B":
-        return ((-z + 2 * nu) * E, 2 * nu * E, (z + 2 * (1 - nu)) * E, (z + (1 - 2 * nu)) * E)
-    if kind == "C":
-        return (-E, 0.0 * E, E, -E)
-    if kind == "D":
-        return ((-z - 2 * nu) * E, -2 * nu * E, (z - 2 * (1 - nu)) * E, (-z + (1 - 2 * nu)) * E)
-    raise AssertionError(kind)
-
-
 @dataclass(frozen=True)
 class StressRows:
     """Real response rows at one depth, per wavenumber (see the module docstring).
@@ -135,10 +122,10 @@ class CoatedStressFRF:
         if not (np.isfinite(self.h) and self.h > 0):
             raise CoatHertzError(f"coating thickness h must be finite and > 0 [m], got {self.h!r}")
 
-    def coefficients(self, w: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def coefficients(self, w: np.ndarray) -> CoatedCoefficients:
         """In-plane coefficients ``(A, B, C, D, A2, B2)`` for the normal and the tangential load
-        (shape ``w.shape + (6, 2)``) and antiplane ``(alpha, beta, gamma)`` (``w.shape + (3,)``).
-        """
+        (``x``, shape ``w.shape + (6, 2)``), antiplane ``(alpha, beta, gamma)`` (``xa``,
+        ``w.shape + (3,)``) and the rows' polynomial coefficients derived from them."""
         coating, substrate = self.layer.coating, self.layer.substrate
         interface = self.layer.interface
         t = np.maximum(np.asarray(w, dtype=float).ravel() * self.h, T_MIN)
@@ -165,41 +152,74 @@ class CoatedStressFRF:
         gamma = np.zeros_like(t) if interface == "frictionless" else alpha * eh + beta
         xa = np.stack([alpha, beta, gamma], axis=-1)
         shape = np.shape(w)
-        return x.reshape((*shape, 6, 2)), xa.reshape((*shape, 3))
+        # rows (kk, pp, zz, kz) = e_a (a_q + s b_q) + e_c (c_q + s d_q) (the basis rows of the
+        # module docstring collected: b = (-B, 0, B, B), d = (-D, 0, D, -D)); in the substrate
+        # e (a_q + s b_q) from A2, B2
+        nu, nus = coating.nu, substrate.nu
+        X = np.ascontiguousarray(np.moveaxis(x, 0, -1))  # (6, 2, n)
+        A, B, C, D, A2, B2 = X
+        coat = np.stack([-A + 2 * nu * B, 2 * nu * B, A + 2 * (1 - nu) * B, A + (1 - 2 * nu) * B,
+                         -C - 2 * nu * D, -2 * nu * D, C - 2 * (1 - nu) * D, -C + (1 - 2 * nu) * D])
+        sub = np.stack([-A2 + 2 * nus * B2, 2 * nus * B2, A2 + 2 * (1 - nus) * B2,
+                        A2 + (1 - 2 * nus) * B2])
+        return CoatedCoefficients(x.reshape((*shape, 6, 2)), xa.reshape((*shape, 3)), coat, B, D,
+                                  sub, B2, np.ascontiguousarray(xa.T))
 
     def at(self, w: np.ndarray, z: float, coef=None) -> StressRows:
-        """Response rows at depth ``z`` [m].
+        """Response rows at depth ``z`` [m] (``coef``: :meth:`coefficients` of the same ``w``).
 
         On the interface ``z = h`` the coating's side is returned; a rigid substrate has no
         stresses below ``h`` (raises).
         """
         w = np.maximum(np.asarray(w, dtype=float), T_MIN / self.h)  # as solved
-        x, xa = self.coefficients(w) if coef is None else coef
+        cf = self.coefficients(w) if coef is None else coef
+        if w.ndim != 1:  # the coefficients are stored flat
+            r = self.at(w.ravel(), z, cf)
+            return StressRows(*(tuple(v.reshape(w.shape) for v in g)
+                                for g in (r.normal, r.tangential, r.antiplane)))
         s, sh = w * z, w * self.h
         if z <= self.h:
             ea, ec = np.exp(-s), np.exp(-(sh - s))
-            rows = [_rows_stress(s, self.layer.coating.nu, ea if k in "AB" else ec, k)
-                    for k in "ABCD"]
-            cols = range(4)
-            a, b = xa[..., 0], xa[..., 1]
-            anti = (a * ea + b * ec, -a * ea + b * ec)
-        else:
-            if self.layer.substrate.is_rigid:
-                raise CoatHertzError(
-                    f"depth z = {z:g} m lies in the rigid substrate "
-                    f"(z must be in [0, h = {self.h:g}] m)"
-                )
-            e = np.exp(-(s - sh))
-            rows = [None] * 4 + [_rows_stress(s, self.layer.substrate.nu, e, k) for k in "AB"]
-            cols = range(4, 6)
-            r_g = self.layer.substrate.G / self.layer.coating.G
-            g = xa[..., 2] * r_g * e
-            anti = (g, -g)
+            loads = []
+            for m in range(2):
+                a_kk, a_pp, a_zz, a_kz, c_kk, c_pp, c_zz, c_kz = cf.coat[:, m]
+                sB, sD = s * cf.B[m], s * cf.D[m]
+                loads.append((ea * (a_kk - sB) + ec * (c_kk - sD), ea * a_pp + ec * c_pp,
+                              ea * (a_zz + sB) + ec * (c_zz + sD),
+                              ea * (a_kz + sB) + ec * (c_kz - sD)))
+            a, b = cf.anti[0], cf.anti[1]
+            a1, b2 = a * ea, b * ec
+            return StressRows(loads[0], loads[1], (a1 + b2, b2 - a1))
+        if self.layer.substrate.is_rigid:
+            raise CoatHertzError(
+                f"depth z = {z:g} m lies in the rigid substrate "
+                f"(z must be in [0, h = {self.h:g}] m)"
+            )
+        e = np.exp(-(s - sh))
+        loads = []
+        for m in range(2):
+            a_kk, a_pp, a_zz, a_kz = cf.sub[:, m]
+            sB = s * cf.B2[m]
+            loads.append((e * (a_kk - sB), e * a_pp, e * (a_zz + sB), e * (a_kz + sB)))
+        r_g = self.layer.substrate.G / self.layer.coating.G
+        g = cf.anti[2] * r_g * e
+        return StressRows(loads[0], loads[1], (g, -g))
 
-        def combine(m: int) -> tuple:
-            return tuple(sum(rows[j][q] * x[..., j, m] for j in cols) for q in range(4))
 
-        return StressRows(combine(0), combine(1), anti)
+@dataclass(frozen=True)
+class CoatedCoefficients:
+    """:meth:`CoatedStressFRF.coefficients`: ``x`` ``(..., 6, 2)`` and ``xa`` ``(..., 3)`` as
+    solved, and per load (axis 1) the rows' polynomial coefficients along ``w`` (last axis):
+    ``coat`` ``(8, 2, n)``, ``B``, ``D``, ``sub`` ``(4, 2, n)``, ``B2``, ``anti`` ``(3, n)``."""
+
+    x: np.ndarray
+    xa: np.ndarray
+    coat: np.ndarray
+    B: np.ndarray
+    D: np.ndarray
+    sub: np.ndarray
+    B2: np.ndarray
+    anti: np.ndarray
 
 
 @dataclass(frozen=True)
@@ -226,8 +246,8 @@ class HomogeneousStressFRF:
 
 def stresses_surface(grid: Grid, depths, frf, p: np.ndarray | None = None,
                      qx: np.ndarray | None = None, qy: np.ndarray | None = None,
-                     pad: int = 4, batch: int | None = None,
-                     out: np.ndarray | None = None, precision: str = "double") -> np.ndarray:
+                     pad: int = 4, out: np.ndarray | None = None,
+                     precision: str = "double") -> np.ndarray:
     """Six stress components [Pa] under surface tractions at each depth [m].
 
     Parameters
@@ -245,9 +265,6 @@ def stresses_surface(grid: Grid, depths, frf, p: np.ndarray | None = None,
         ``sigma_xz(0) = -qx``, ``sigma_yz(0) = -qy``.
     pad
         Period of the FFT in domain widths (>= 2: zero padding, non-periodic).
-    batch
-        Depths per inverse transform (default: as many as fit in about 64 MB of spectra); the
-        working memory beyond ``out`` is about ``batch`` times ``96 pad^2 nx ny / 2`` bytes.
     out
         Optional array of shape ``(len(depths), 6, ny, nx)`` (float64) to write into.
     precision
@@ -291,14 +308,12 @@ def stresses_surface(grid: Grid, depths, frf, p: np.ndarray | None = None,
     if precision not in ("double", "single"):
         raise CoatHertzError(f"precision must be 'double' or 'single', got {precision!r}")
     cdt = np.complex128 if precision == "double" else np.complex64
-    per_depth = 6 * Nk * Ny * np.dtype(cdt).itemsize
-    if batch is None:
-        batch = max(1, min(depths.size, (64 << 20) // per_depth))
-    if not (isinstance(batch, int | np.integer) and batch >= 1):
-        raise CoatHertzError(f"batch must be an integer >= 1, got {batch!r}")
-    # layout (k_x, k_y): rfft along x, full along y
-    kx = 2 * np.pi * sfft.rfftfreq(Nx, grid.dx)[:, None]
-    ky = 2 * np.pi * sfft.fftfreq(Ny, grid.dy)[None, :]
+    # layout (k_x, k_y): rfft along x (k_x >= 0 ascending), full along y in ascending k_y
+    # (fftshift order, so that a band |k| <= w_cut is one block; undone by (-1)^j after the
+    # transform along y, Ny being even)
+    kx_v = 2 * np.pi * sfft.rfftfreq(Nx, grid.dx)
+    ky_v = 2 * np.pi * sfft.fftshift(sfft.fftfreq(Ny, grid.dy))
+    kx, ky = kx_v[:, None], ky_v[None, :]
     w = np.hypot(kx, ky)
     w_u, inv = np.unique(w, return_inverse=True)
     inv = inv.reshape(w.shape)
@@ -312,11 +327,13 @@ def stresses_surface(grid: Grid, depths, frf, p: np.ndarray | None = None,
     # Nyquist lines carry odd responses that a real field cannot hold: dropped for all
     if Nx % 2 == 0:
         cell[-1, :] = 0.0
-    if Ny % 2 == 0:
-        cell[:, Ny // 2] = 0.0
+    cell[:, 0] = 0.0  # k_y = -Ny/2 (Ny = pad ny is even)
+    sign = np.where(np.arange(ny) % 2 == 0, 1.0, -1.0).astype(cdt)
 
     def spectrum(v):
-        return None if v is None else sfft.rfft2(v, s=(Ny, Nx), workers=1).T * cell
+        if v is None:
+            return None
+        return sfft.fftshift(sfft.rfft2(v, s=(Ny, Nx), workers=1).T, axes=1) * cell
 
     P, Qx, Qy = spectrum(p), spectrum(qx), spectrum(qy)
     tangential = Qx is not None or Qy is not None
@@ -341,65 +358,88 @@ def stresses_surface(grid: Grid, depths, frf, p: np.ndarray | None = None,
         terms["zz"].append(("zz_t", oQk))
         terms["yz"] += [("kz_t", -s * Qk), ("pz", c * Qp)]
         terms["xz"] += [("kz_t", -c * Qk), ("pz", -s * Qp)]
-    needed = {name for group in terms.values() for name, _ in group}
+    needed = sorted({name for group in terms.values() for name, _ in group})
     terms = {k: [(name, spec.astype(cdt)) for name, spec in group] for k, group in terms.items()}
     coef = frf.coefficients(w_u)
     Px, Py = Nx * grid.dx, Ny * grid.dy
-    W = 0.0 if P is None else float(np.real(P[0, 0])) * grid.dx * grid.dy  # load [N]
+    W = 0.0 if P is None else float(np.real(P[0, Ny // 2])) * grid.dx * grid.dy  # load [N]
     eps = 1e-4 / max(Px, Py)
     we = np.array([eps, 2 * eps])
     coef_e = frf.coefficients(we) if W else None
     lattice = _lattice_sum3(Px, Py)
-    buf = np.empty((batch, 6, Nk, Ny), dtype=cdt)
-    tmp = np.empty((Nk, Ny), dtype=cdt)
+    # work arrays, allocated once (fresh multi-MB arrays per depth cost page faults)
+    buf = np.empty((6, Nk, Ny), dtype=cdt)
+    tmp_buf = np.empty(Nk * Ny, dtype=cdt)
+    rad_buf = np.empty((len(needed), Nk * Ny), dtype=cdt)
+    colsT_buf = np.empty(6 * ny * Nk, dtype=cdt)
 
-    def accumulate(dst, group, radial):
-        if not group:
-            dst[...] = 0.0
-            return
-        for m, (name, spec) in enumerate(group):
-            if m == 0:
-                np.multiply(radial[name], spec, out=dst)
-            else:
-                np.multiply(radial[name], spec, out=tmp)
-                dst += tmp
-
-    for i0 in range(0, depths.size, batch):
-        zs = depths[i0:i0 + batch]
-        for b, z in enumerate(zs):
-            rows = frf.at(w_u, z, coef)
-            kk, pp, zz, kz = rows.normal
-            rad = {"a_n": 0.5 * (kk + pp), "d_n": 0.5 * (kk - pp), "zz_n": zz, "kz_n": kz}
-            if tangential:
-                kk, pp, zz, kz = rows.tangential
-                rad.update({"a_t": 0.5 * (kk + pp), "d_t": 0.5 * (kk - pp), "zz_t": zz,
-                            "kz_t": kz, "kp": rows.antiplane[0], "pz": rows.antiplane[1]})
-            # complex radial rows: complex x complex products run faster than mixed ones
-            radial = {name: np.take(rad[name].astype(cdt), inv) for name in needed}
-            B = buf[b]
-            accumulate(B[0], terms["S"], radial)  # Sigma, in xx for now
-            accumulate(B[1], terms["X"], radial)  # X = c2 Delta - s2 T_kp
-            np.subtract(B[0], B[1], out=tmp)
-            B[0] += B[1]  # sigma_xx = Sigma + X
-            B[1] = tmp  # sigma_yy = Sigma - X
-            accumulate(B[2], terms["zz"], radial)
-            accumulate(B[3], terms["yz"], radial)
-            accumulate(B[4], terms["xz"], radial)
-            accumulate(B[5], terms["xy"], radial)
-        nb = zs.size
-        # pruned inverse: complex transform along y, keep the ny rows of the body, then
-        # complex-to-real along x (the same as irfft2 cropped, about half the work)
-        cols = sfft.ifft(buf[:nb], axis=-1, overwrite_x=True, workers=1)[..., :ny]
-        cols = np.ascontiguousarray(cols.transpose(0, 1, 3, 2))  # (nb, 6, ny, Nk)
-        out[i0:i0 + nb] = sfft.irfft(cols, n=Nx, axis=-1, overwrite_x=True, workers=1)[..., :nx]
+    for i, z in enumerate(depths):
+        rows = frf.at(w_u, z, coef)
+        kk, pp, zz, kz = rows.normal
+        rad = {"a_n": 0.5 * (kk + pp), "d_n": 0.5 * (kk - pp), "zz_n": zz, "kz_n": kz}
+        if tangential:
+            kk, pp, zz, kz = rows.tangential
+            rad.update({"a_t": 0.5 * (kk + pp), "d_t": 0.5 * (kk - pp), "zz_t": zz,
+                        "kz_t": kz, "kp": rows.antiplane[0], "pz": rows.antiplane[1]})
+        # band: the responses decay like e^{-w z}; beyond the last |row| > BAND_TOL (of the
+        # unit load) the spectrum is dropped (the field changes by < 1e-16 of the load)
+        amp = np.max(np.abs(np.stack([rad[name] for name in needed])), axis=0)
+        big = np.nonzero(amp > BAND_TOL)[0]
+        w_cut = w_u[big[-1]] if big.size else 0.0
+        Kx = max(1, int(np.searchsorted(kx_v, w_cut, side="right")))
+        c0 = int(np.searchsorted(ky_v, -w_cut, side="left"))
+        c1 = max(c0 + 1, int(np.searchsorted(ky_v, w_cut, side="right")))
+        blk = (slice(0, Kx), slice(c0, c1))
+        sub_inv = inv[blk]
+        size = Kx * (c1 - c0)
+        # complex radial rows: complex x complex products run faster than mixed ones
+        radial = {}
+        for q, name in enumerate(needed):
+            radial[name] = rad_buf[q, :size].reshape(Kx, c1 - c0)
+            np.take(rad[name].astype(cdt), sub_inv, mode="clip", out=radial[name])
+        tmp = tmp_buf[:size].reshape(Kx, c1 - c0)
+        B = buf[:, :Kx, :]
+        B[:, :, :c0] = 0.0
+        B[:, :, c1:] = 0.0
+        Bb = B[:, :, c0:c1]
+        _accumulate(Bb[0], terms["S"], radial, blk, tmp)  # Sigma, in xx for now
+        _accumulate(Bb[1], terms["X"], radial, blk, tmp)  # X = c2 Delta - s2 T_kp
+        np.subtract(Bb[0], Bb[1], out=tmp)
+        Bb[0] += Bb[1]  # sigma_xx = Sigma + X
+        Bb[1] = tmp  # sigma_yy = Sigma - X
+        for k, group in ((2, "zz"), (3, "yz"), (4, "xz"), (5, "xy")):
+            _accumulate(Bb[k], terms[group], radial, blk, tmp)
+        # pruned inverse: complex transform along y of the band's k_x rows, keep the ny rows of
+        # the body, then complex-to-real along x (zero beyond the band; irfft2 cropped)
+        cols = sfft.ifft(B, axis=-1, overwrite_x=True, workers=1)[..., :ny]
+        colsT = colsT_buf[:6 * ny * Kx].reshape(6, ny, Kx)
+        np.multiply(cols.transpose(0, 2, 1), sign[:, None], out=colsT)
+        out[i] = sfft.irfft(colsT, n=Nx, axis=-1, overwrite_x=True, workers=1)[..., :nx]
         if W:
-            for b, z in enumerate(zs):
-                n_kk, n_pp = frf.at(we, z, coef_e).normal[:2]
-                T1 = ((n_kk[1] + n_pp[1]) - (n_kk[0] + n_pp[0])) / eps
-                shift = -W * T1 * lattice / (4 * np.pi)  # images' share of sigma_xx, sigma_yy
-                out[i0 + b, 0] -= shift
-                out[i0 + b, 1] -= shift
+            n_kk, n_pp = frf.at(we, z, coef_e).normal[:2]
+            T1 = ((n_kk[1] + n_pp[1]) - (n_kk[0] + n_pp[0])) / eps
+            shift = -W * T1 * lattice / (4 * np.pi)  # images' share of sigma_xx, sigma_yy
+            out[i, 0] -= shift
+            out[i, 1] -= shift
     return out
+
+
+def _accumulate(dst: np.ndarray, group: list, radial: dict, blk: tuple, tmp: np.ndarray) -> None:
+    """``dst = sum of radial[name] * spec[blk]`` over the ``(name, spec)`` of ``group``."""
+    if not group:
+        dst[...] = 0.0
+        return
+    for m, (name, spec) in enumerate(group):
+        if m == 0:
+            np.multiply(radial[name], spec[blk], out=dst)
+        else:
+            np.multiply(radial[name], spec[blk], out=tmp)
+            dst += tmp
+
+
+#: Spectral band of a depth: wavenumbers where every response row is below this (of the unit
+#: surface load) are dropped.
+BAND_TOL = 1e-17
 
 
 def _lattice_sum3(Px: float, Py: float, m: int = 64) -> float:
