@@ -148,7 +148,7 @@ def test_axisym_homogeneous_known_maxima(capsys):
 
 
 def test_axisym_stack(capsys):
-    """A layer stack (refused by the FFT) is solved by --method axisym; the interfaces are all
+    """A layer stack is solved by --method axisym (and fft, test_fft_stack_stresses); the interfaces are all
     scanned (the shear maximum lies on one of them)."""
     stack = ["--coating", "300 GPa,0.2,10 um", "--coating", "150 GPa,0.3,15 um"]
     assert main(["stresses", *BASE, *stack, "--method", "axisym", "--json"]) == 0

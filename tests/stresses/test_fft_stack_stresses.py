@@ -218,3 +218,26 @@ def test_stack_bad_input():
         contact_stresses(case, res, depths=[10e-6], interface="frictionless")
     with pytest.raises(CoatHertzError, match="layer 2 thickness"):
         StackStressFRF((StackLayer(STEEL, 1e-6), StackLayer(AL, 0.0)), STEEL)
+
+
+@pytest.mark.slow
+def test_cli_fft_stack_matches_axisym(capsys):
+    """``coathertz stresses`` on a two-layer stack with ``--method fft`` (128^2) and ``axisym``:
+    measured |difference| of the von Mises maxima 2.4e-5 p0, interface shear 1.8e-5 p0 (both on
+    the lower interface at 25 um), surface tension 2.2e-3 p0 (the FFT's cells at the edge)."""
+    import json
+
+    from coathertz.cli import main
+
+    base = ["--substrate", "200 GPa,0.3", "--W", "100 N", "--R", "10 mm",
+            "--coating", "300 GPa,0.2,10 um", "--coating", "150 GPa,0.3,15 um"]
+    d = {}
+    for m in ("axisym", "fft"):
+        assert main(["stresses", *base, "--method", m, "--json"]) == 0
+        d[m] = json.loads(capsys.readouterr().out)
+    ax, ff = d["axisym"], d["fft"]
+    for k in ("vm_max", "vm_max_coating", "vm_max_substrate", "interface_shear_max"):
+        assert ff[k]["over_p0"] == pytest.approx(ax[k]["over_p0"], abs=2e-4), k
+    assert ff["interface_shear_max"]["at"][2] == pytest.approx(25e-6)
+    assert ff["tensile_max_surface"]["over_p0"] == pytest.approx(
+        ax["tensile_max_surface"]["over_p0"], abs=0.01)

@@ -3,7 +3,8 @@ r"""Stress responses inside every layer of a stack (N layers on an elastic or ri
 The FFT stresses (:mod:`coathertz.fft.stresses`) need, per wavenumber ``w = |k|`` and depth
 ``z``, the plane-strain field along ``k`` under three unit surface loads: a pressure
 ``P cos kx`` (rows ``normal``), a shear ``Q cos kx`` along ``k`` (``tangential``) and a shear
-``Q cos kx`` normal to ``k`` (``antiplane``), in the conventions of :class:`StressRows`.
+``Q cos kx`` normal to ``k`` (``antiplane``), in the conventions of
+:class:`coathertz.fft.stresses.StressRows`.
 
 In-plane loads (Airy function, the kernel definition of :mod:`coathertz.stack`)
 --------------------------------------------------------------------------------
@@ -21,7 +22,7 @@ layer of scaled thickness ``t = w h`` (local depth ``0 <= s <= t``, ``u = t - s`
 :mod:`coathertz.stack`: no growing exponential, independent as ``t -> 0``); in an elastic
 substrate ``f = c_1 e^{-s} + c_2 s e^{-s}``.
 
-The coefficients come from the stack kernel's own sweep (:func:`coathertz.stack` helpers
+The coefficients come from the stack kernel's own sweep (the :mod:`coathertz.stack` helpers
 ``_M``, ``_half_space``, ``_frictionless``), recorded and run back down:
 
 * *Up.* ``B_j`` (4 x 2, orthonormalised columns) spans the admissible states
@@ -119,7 +120,8 @@ class StackStressFRF:
 
     @classmethod
     def of(cls, layers: Sequence, substrate: Material) -> StackStressFRF:
-        """From any layers with ``material``, ``h``, ``interface`` (e.g. :class:`materials.Layer`)."""
+        """From any layers with ``material``, ``h``, ``interface``
+        (e.g. :class:`coathertz.materials.Layer`)."""
         return cls(tuple(StackLayer(L.material, float(L.h), L.interface) for L in layers), substrate)
 
     @property
