@@ -616,7 +616,8 @@ def contact_stresses(case: ContactCase, result: ContactResult, *, body: int = 2,
     pad, image_error = image_pad(b, grid, pad)
     if image_error > 0.005:
         warnings.warn(
-            f"body{body}: the layers (H = {H:g} m) are thick against the FFT period "
+            f"body{body}: the {'layer stack' if b.is_stacked else 'coating'} (H = {H:g} m) is "
+            "thick against the FFT period "
             f"({pad} domain widths): the lateral stresses may be off by about "
             f"{100 * image_error:.2g} % of p0 (from the periodic images of the field)",
             ModelValidityWarning, stacklevel=2)
