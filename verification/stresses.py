@@ -230,7 +230,8 @@ def maxima(case: ContactCase, n: int, mu_values, keep: bool = False) -> dict:
         scale = min(v for v in (r.r_a, r.r_b, r.a) if math.isfinite(v))
         z = depths(scale, h)
         F0 = contact_stresses(case, r, depths=z)
-        F1 = contact_stresses(case, r, depths=z, mu=1.0)
+        # the sliding part only where some mu > 0 needs it (the field is linear in mu)
+        F1 = contact_stresses(case, r, depths=z, mu=1.0) if any(m > 0 for m in mu_values) else F0
     Sp, Sq = F0.sigma, F1.sigma - F0.sigma
     p0 = float(r.p0)
     out = {"W": case.W, "p0": p0, "a": float(r.a), "scale": scale, "n": n, "by_mu": {}}
@@ -294,7 +295,7 @@ def refine_at(sc: C.StudyCase, n: int, mu_values, picked, base: dict) -> dict:
     loads = [base["by_mu"][0.0 if p["H"] == 0 else m]["W_y"] for m in (picked[:1] if p["H"] == 0 else picked)]
     out = {}
     for W, ms in zip(loads, [mu_values] if p["H"] == 0 else [[m] for m in picked], strict=True):
-        d = maxima(make_case(p["ratio"], p["E"], p["H"], W), n, mu_values)
+        d = maxima(make_case(p["ratio"], p["E"], p["H"], W), n, ms)
         for m in ms:
             row = dict(d["by_mu"][m])
             grow = (Y / row["vm"])
@@ -358,7 +359,7 @@ def analyse(result: C.StudyResult) -> None:
                          "W_bar": o["W_y"] / W_ys[sc.params["ratio"]], "where": o["where"],
                          "vm_over_p0": o["vm_over_p0"], "p0_over_Y": o["p0_y"] / Y,
                          "x_over_a": o["at"][0] / o["a_over"], "z_over_a": o["at"][2] / o["a_over"],
-                         "tensile_over_p0": o["tensile_over_p0"],
+                         "tensile_over_p0": o["tensile_over_p0"], "tensile_z": o["tensile_at"][2],
                          "iface_shear_over_p0": o.get("iface_shear_over_p0", math.nan),
                          "interp": o["interp"]})
     result.extra["onset"] = rows
@@ -481,7 +482,8 @@ def _claims(result, solved, fine, rows, hom, vm_max_xz) -> None:
             # on the surface the peak sits at the trailing contact edge, whose cells converge at
             # order 1/2: the Richardson factor 1 / (1 - sqrt(n / n_refined)) on the difference
             grids = result.extra["grids"]
-            edge = w["where"] == "surface" or key == "tensile_over_p0"
+            at_surface = {"W_bar": w["where"] == "surface", "tensile_over_p0": w["tensile_z"] == 0.0}
+            edge = at_surface.get(key, False)
             factor = 1.0 / (1.0 - math.sqrt(grids["n"] / grids["n_refined"])) if edge else 1.0
             unc = factor * abs(ref_val - w[key]) + (w["interp"] * w[key] if key == "W_bar" else 0.0)
             note = (f"refined grid: {ref_val:.4f} ({f['where']}); uncertainty: the difference"
