@@ -2,7 +2,9 @@
 
 The pressure ``p`` is the frictionless normal solution (Goodman's approximation: the
 normal--tangential coupling through elastic dissimilarity, ``(1 - 2 nu1)/G1 - (1 - 2 nu2)/G2``,
-is neglected). The shear traction ``q`` acts along the load direction ``e`` only; in the stick
+is neglected; its effect, measured with :mod:`coathertz.fft.coupling` for a rigid sphere on
+steel, beta = 0.286, at Q = 0.5 mu W: -1.7 % in the tangential displacement, the stick radius
+within a cell). The shear traction ``q`` acts along the load direction ``e`` only; in the stick
 zone the relative tangential displacement along ``e`` is a rigid shift ``delta``, in the slip
 zone ``|q| = mu p``. Surface compliance of a homogeneous half-space to a shear traction
 (Cerruti, in Fourier form, Johnson 1985 sec. 3.2)::
@@ -58,7 +60,8 @@ def _compliance(grid: Grid, bodies, direction: float, pad: int):
 
 
 def solve_partial_slip(p: np.ndarray, grid: Grid, bodies, Q: float, mu: float,
-                       direction: float = 0.0, pad: int = 2, max_iter: int = 200) -> PartialSlip:
+                       direction: float = 0.0, pad: int = 2, max_iter: int = 200,
+                       offset: np.ndarray | None = None) -> PartialSlip:
     """Cattaneo--Mindlin partial slip on the cell pressure ``p`` [Pa].
 
     Parameters
@@ -71,6 +74,11 @@ def solve_partial_slip(p: np.ndarray, grid: Grid, bodies, Q: float, mu: float,
         Coulomb friction coefficient, ``> 0``.
     direction
         Load direction [rad] from x.
+    offset
+        Relative tangential displacement [m] along the load direction that the traction ``q``
+        does not cause (shape ``grid.shape``; ``None``: zero): added to ``C q`` in the stick
+        condition and the slip test. The normal--tangential coupling of dissimilar bodies enters
+        here (:mod:`coathertz.fft.coupling`).
     """
     if not (np.isfinite(mu) and mu > 0):
         raise CoatHertzError(f"friction coefficient mu must be > 0 for partial slip, got {mu!r}")
@@ -90,6 +98,9 @@ def solve_partial_slip(p: np.ndarray, grid: Grid, bodies, Q: float, mu: float,
             f"{MAX_CONTACT_CELLS} ({MAX_CONTACT_CELLS**2 * 8 / 2**20:.0f} MiB): use a coarser grid "
             f"(--grid {int(grid.shape[1] * (MAX_CONTACT_CELLS / n) ** 0.5) // 8 * 8} or less for this "
             "contact)")
+    if offset is not None and np.shape(offset) != p.shape:
+        raise CoatHertzError(f"offset shape {np.shape(offset)} does not match the pressure {p.shape}")
+    off = np.zeros(n) if offset is None else np.asarray(offset, dtype=float).ravel()[idx]
     K, (Ny, Nx) = _compliance(grid, bodies, direction, pad)
     ny, nx = grid.shape
     # the compliance is a convolution: one inverse transform gives the response at every offset,
@@ -110,10 +121,10 @@ def solve_partial_slip(p: np.ndarray, grid: Grid, bodies, Q: float, mu: float,
         A[:m, :m] = C[np.ix_(s, s)]
         A[:m, m] = -1.0
         A[m, :m] = dA
-        rhs = np.concatenate([-C[np.ix_(s, sl)] @ q[sl], [Q - dA * q[sl].sum()]])
+        rhs = np.concatenate([-C[np.ix_(s, sl)] @ q[sl] - off[s], [Q - dA * q[sl].sum()]])
         x = np.linalg.solve(A, rhs)
         q[s], delta = x[:m], x[m]
-        slip = C @ q - delta  # relative displacement minus the rigid shift
+        slip = C @ q + off - delta  # relative displacement minus the rigid shift
         over = stick & (np.abs(q) > bound)
         back = ~stick & (slip * q > 0)  # slip running with the traction: not admissible
         if not over.any() and not back.any():
