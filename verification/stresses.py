@@ -35,9 +35,9 @@ closed form (:mod:`coathertz.hamilton`): :math:`\max\sigma_{vM}/p_0` within 1 % 
 0.305); the coated maps (observations). Every number carries a grid-convergence uncertainty: the
 same computation on a finer grid, the difference is the uncertainty (``refined``).
 
-Resolutions (grids ``n`` / refined ``n``): ``tiny`` 32/48, homogeneous and one coating
-(E = 4, H = 0.3), mu in {0, 0.25, 0.5}; ``quick`` 48/64, homogeneous, E in {1/4, 4} at H = 0.3
-and one ellipse (Rx/Ry = 3, homogeneous), mu = 0 to 0.5 by 0.1; ``full`` 96/128, E in
+Resolutions (grids ``n`` / refined ``n``): ``tiny`` 24/32, homogeneous and one coating
+(E = 4, H = 0.3), mu in {0, 0.25, 0.5}; ``quick`` 32/48, homogeneous, E in {1/4, 4} at H = 0.3
+and one ellipse (Rx/Ry = 3, homogeneous), mu = 0 to 0.5 by 0.1; ``full`` 64/96, E in
 {1/4, 1/2, 1, 2, 4} x H in {0.01, 0.03, 0.1, 0.3, 1, 3} (circular) and Rx/Ry in {3, 10}
 (homogeneous and E in {1/4, 4} x H in {0.1, 1}). The study solves in ``analyse`` (its cases
 are not registry rows).
@@ -69,7 +69,7 @@ CLASSES = ("surface", "coating", "interface", "substrate")
 COLOURS = {"surface": "tab:orange", "coating": "tab:red", "interface": "tab:purple", "substrate": "tab:blue"}
 JUDGED = "DC-FFT stresses (full sliding, q = mu p)"
 #: (base grid, refined grid) per resolution
-GRIDS = {"tiny": (24, 32), "quick": (32, 48), "full": (96, 128)}
+GRIDS = {"tiny": (24, 32), "quick": (32, 48), "full": (64, 96)}
 #: loads solved per coated case (2: W_ys and the middle of the predicted onsets; 3: W_ys and both ends)
 LOADS = {"tiny": 2, "quick": 2, "full": 3}
 
@@ -466,6 +466,20 @@ def _claims(result, solved, fine, rows, hom, vm_max_xz) -> None:
     coated = [r for r in rows if r["H"] > 0]
     if not coated:
         return
+    same = [r for r in coated if r["E"] == 1.0]
+    if same:  # a coating of the substrate's own material: the homogeneous onset at every mu
+        hom_rows = {(r["ratio"], r["mu"]): r["W_bar"] for r in rows if r["H"] == 0}
+        devs = [100 * abs(r["W_bar"] / hom_rows[(r["ratio"], r["mu"])] - 1) for r in same
+                if (r["ratio"], r["mu"]) in hom_rows]
+        interp = 100 * max(r["interp"] for r in same)
+        if devs:
+            worst = max(devs)
+            holds, inc = C.judge("<", worst, 1.0, interp)
+            result.claims.append(C.Claim(
+                "stresses-same-material", "coatings of the substrate's own material (E = 1, bonded): W_y "
+                "equals the homogeneous body's at every mu and H", worst, "< 1 %", holds, "%", 0.05,
+                f"{len(same)} (case, mu); uncertainty: the largest interpolation in W ({interp:.2f} %)",
+                uncertainty=interp, inconclusive=inc, judged_against=f"{JUDGED}; E = 1 coatings"))
     for cid, key, pick, text in (
             ("stresses-map-wy-min", "W_bar", min, "smallest W_y/W_ys"),
             ("stresses-map-wy-max", "W_bar", max, "largest W_y/W_ys"),
@@ -537,6 +551,11 @@ def _plot_mu(result, rows, outdir) -> list:
     fig, axes = C.figure(1, 1, width=5.6, height=4.0)
     ax = axes[0, 0]
     ids = list(dict.fromkeys(r["case"] for r in rows))
+    if len(ids) > 12:  # full: the homogeneous bodies and the extreme moduli at two thicknesses
+        Es_ = sorted({r["E"] for r in rows if r["H"] > 0})
+        keep = {r["case"] for r in rows
+                if r["H"] == 0 or (r["E"] in (Es_[0], Es_[-1]) and r["H"] in (0.1, 1.0))}
+        ids = [i for i in ids if i in keep]
     cmap = __import__("matplotlib").colormaps["viridis"]
     for i, cid in enumerate(ids):
         sel = sorted((r for r in rows if r["case"] == cid), key=lambda r: r["mu"])
