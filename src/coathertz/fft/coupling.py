@@ -23,8 +23,9 @@ Spence's problem during normal loading are not modelled), then :math:`Q` monoton
 stick condition is incremental: in the stick zone the change of relative tangential
 displacement since the normal loading, :math:`C q - K_c * (p - p_0) = \delta`, is a rigid
 shift (:math:`p_0`: the frictionless pressure). The normal problem (dense active set on the
-cells near the contact) and the tangential one (:func:`solve_partial_slip` with that offset)
-are solved in turn until the pressure and the stick zone stop changing.
+cells near the contact) and the tangential one
+(:func:`~coathertz.fft.partial_slip.solve_partial_slip` with that offset) are solved in turn
+until the pressure and the stick zone stop changing.
 
 Measured (``tests/stresses/test_coupling.py``): rigid sphere on steel (:math:`\beta = 0.286`),
 :math:`\mu = 0.3`, :math:`Q = 0.5 \mu W`, 32^2 cells over 3a. The coupling lowers the tangential
@@ -32,8 +33,9 @@ displacement :math:`\delta` by 1.7 % of Mindlin's value (-1.68 / -1.73 / -1.74 %
 4 / 8 / 16 domain widths; by Richardson over the periods: uncoupled 0.13479 against Mindlin's
 0.13480, coupled 1.76 % lower); the stick radius moves by less than the grid resolves (+1.3 % on
 32^2, +0.1 % on 48^2: whole cells); the pressure centre moves 0.017 a against the load. So
-Goodman's approximation of :func:`solve_partial_slip` errs by about 2 % in the tangential
-compliance for this strongly dissimilar pair and by less than a cell in the stick zone.
+Goodman's approximation of :func:`~coathertz.fft.partial_slip.solve_partial_slip` errs by
+about 2 % in the tangential compliance for this strongly dissimilar pair and by less than a
+cell in the stick zone.
 The cross kernel reproduces Hertz's closed-form radial surface displacement (Johnson eq 3.41a)
 within 0.9 % of its peak.
 """
