@@ -606,8 +606,10 @@ def _plot_maps(result, circ, outdir) -> list:
             im = ax.imshow(Z, origin="lower", aspect="auto", cmap="viridis", norm=norm)
             for (ei, hi_), w in where.items():
                 v = Z[ei, hi_]
+                r_, g_, b_, _ = im.cmap(norm(v))
+                ink = "k" if 0.299 * r_ + 0.587 * g_ + 0.114 * b_ > 0.5 else "w"  # readable on the cell
                 ax.text(hi_, ei, f"{v:.2g}\n{w}" if key == "W_bar" else f"{v:.2g}", ha="center", va="center",
-                        fontsize=6, color="w")
+                        fontsize=6, color=ink)
             for ei in range(len(Es_)):
                 for hi_ in range(len(Hs)):
                     if not math.isfinite(Z[ei, hi_]):
@@ -634,7 +636,7 @@ def _plot_slice(result, outdir) -> list:
     vm = s["vm"] / Y
     cs = ax.contourf(X, Z, vm, levels=20, cmap="magma")
     ax.contour(X, Z, vm, levels=[1.0], colors="c", linewidths=1.0)
-    ax.plot([], [], "c-", lw=1.0, label=r"$\sigma_{vM} = Y$ (yielded above $W_{ys}$)")
+    ax.plot([], [], "c-", lw=1.0, label=r"$\sigma_{vM} = Y$ (inside: above the yield stress)")
     ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.22), frameon=False)
     ax.invert_yaxis()
     ax.axvline(-1, color="w", lw=0.6, ls=":")
