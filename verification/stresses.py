@@ -283,25 +283,43 @@ def onset(sc: C.StudyCase, n: int, mu_values, W_ref: float, n_loads: int = 3) ->
         grow = (Wy / near["W"]) ** (1.0 / 3.0)
         row.update(W_y=Wy, interp=spread, a_over=near["scale"], p0_y=near["p0"] * grow)  # "at": near load
         out[m] = row
-    return {"by_mu": out, "loads": [d["W"] for d in loads], "field": first["field"]}
+    per_load = [{k: v for k, v in d.items() if k != "field"} for d in loads]
+    return {"by_mu": out, "loads": [d["W"] for d in loads], "per_load": per_load, "field": first["field"]}
 
 
 def refine_at(sc: C.StudyCase, n: int, mu_values, picked, base: dict) -> dict:
-    """The onset of the ``picked`` mu values on the grid ``n``: one solve at the base grid's
-    W_y of each (one in all for a homogeneous body, self-similar), and the local scaling
-    ``W_y = W (Y / vm)^3`` from there (its error is second order in ``ln(vm / Y)``, the
-    few-percent grid difference)."""
+    """The onset of the ``picked`` mu values on the grid ``n``, from one solve.
+
+    Homogeneous body (self-similar): at the base grid's W_y, and ``W_y = W (Y / vm)^3``.
+    Coated: at the base grid's solved load nearest the first picked mu's W_y; every quantity is
+    compared with the base grid at that same load and the difference carried to the onset:
+    ``W_y`` shifts by the factor ``(vm_base / vm_fine)^3`` (the local scaling; its error is
+    second order in the few-percent grid difference), the tension and the shear over p0 by
+    their differences."""
     p = sc.params
-    loads = [base["by_mu"][0.0 if p["H"] == 0 else m]["W_y"] for m in (picked[:1] if p["H"] == 0 else picked)]
     out = {}
-    for W, ms in zip(loads, [mu_values] if p["H"] == 0 else [[m] for m in picked], strict=True):
-        d = maxima(make_case(p["ratio"], p["E"], p["H"], W), n, ms)
-        for m in ms:
+    if p["H"] == 0:
+        W = base["by_mu"][0.0]["W_y"]
+        d = maxima(make_case(p["ratio"], p["E"], p["H"], W), n, mu_values)
+        for m in mu_values:
             row = dict(d["by_mu"][m])
-            grow = (Y / row["vm"])
+            grow = Y / row["vm"]
             row.update(W_y=W * grow**3, interp=0.0, a_over=d["scale"], p0_y=d["p0"] * grow)
             out[m] = row
-    return {"by_mu": out, "loads": loads}
+        return {"by_mu": out, "loads": [W]}
+    Wy0 = base["by_mu"][picked[0]]["W_y"]
+    ref = min(base["per_load"], key=lambda d: abs(math.log(d["W"] / Wy0)))
+    d = maxima(make_case(p["ratio"], p["E"], p["H"], ref["W"]), n, picked)
+    for m in picked:
+        b, f, o = ref["by_mu"][m], d["by_mu"][m], base["by_mu"][m]
+        row = dict(f)
+        row.update(W_y=o["W_y"] * (b["vm"] / f["vm"]) ** 3, interp=0.0, a_over=d["scale"],
+                   p0_y=o["p0_y"] * (b["vm"] / f["vm"]))
+        for key in ("tensile_over_p0", "iface_shear_over_p0"):
+            if key in f:
+                row[key] = o[key] + f[key] - b[key]
+        out[m] = row
+    return {"by_mu": out, "loads": [ref["W"]]}
 
 
 def _root(lnW: np.ndarray, lnF: np.ndarray) -> tuple[float, float]:
