@@ -66,6 +66,7 @@ CLAIM = ("Extension (not in the paper): homogeneous onset 0.620 p0 at 0.481 a (J
 R = 10e-3
 ES, NU, Y = 200e9, 0.3, 1e9
 CLASSES = ("surface", "coating", "interface", "substrate")
+SHORT = {"surface": "surf", "coating": "coat", "interface": "intf", "substrate": "subs"}
 COLOURS = {"surface": "tab:orange", "coating": "tab:red", "interface": "tab:purple", "substrate": "tab:blue"}
 JUDGED = "DC-FFT stresses (full sliding, q = mu p)"
 #: (base grid, refined grid) per resolution
@@ -574,23 +575,27 @@ def _plot_mu(result, rows, outdir) -> list:
         keep = {r["case"] for r in rows
                 if r["H"] == 0 or (r["E"] in (Es_[0], Es_[-1]) and r["H"] in (0.1, 1.0))}
         ids = [i for i in ids if i in keep]
-    cmap = __import__("matplotlib").colormaps["viridis"]
-    for i, cid in enumerate(ids):
+    # colour: the coating (E, H); line style: the geometry Rx/Ry; homogeneous bodies in black
+    combos = sorted({(r["E"], r["H"]) for r in rows if r["case"] in ids and r["H"] > 0})
+    styles = {1.0: "-", 3.0: "--", 10.0: ":"}
+    tab10 = __import__("matplotlib").colormaps["tab10"]
+    for cid in ids:
         sel = sorted((r for r in rows if r["case"] == cid), key=lambda r: r["mu"])
         hom = sel[0]["H"] == 0
-        ax.plot([r["mu"] for r in sel], [r["W_bar"] for r in sel], "o-" if not hom else "s--",
-                color="k" if hom and sel[0]["ratio"] == 1 else cmap(i / max(1, len(ids) - 1)), ms=3.5, lw=1.2,
-                label=cid)
+        colour = "k" if hom else tab10(combos.index((sel[0]["E"], sel[0]["H"])) % 10)
+        ax.plot([r["mu"] for r in sel], [r["W_bar"] for r in sel], styles.get(sel[0]["ratio"], "-."),
+                marker="s" if hom else "o", color=colour, ms=3.5, lw=1.2, label=cid)
     ham = result.extra.get("hamilton")
     if ham:
         m = sorted(ham)
-        ax.plot(m, [(ham[0.0]["vm_over_p0"] / ham[k]["vm_over_p0"]) ** 3 for k in m], ":", color="tab:red",
-                lw=2, label="Hamilton (1983), homogeneous")
+        ax.plot(m, [(ham[0.0]["vm_over_p0"] / ham[k]["vm_over_p0"]) ** 3 for k in m], "-", color="tab:red",
+                lw=2.5, alpha=0.5, label="Hamilton (1983), homogeneous sphere")
     ax.set_yscale("log")
     ax.set_xlabel(r"friction coefficient $\mu$ (full sliding, $q = \mu p$)")
     ax.set_ylabel(r"$W_y / W_{ys}$ (first-yield load / uncoated substrate's)")
     ax.set_title(f"stresses study ({result.resolution}): first yield vs friction, DC-FFT "
-                 f"{result.extra['grids']['n']}$^2$", fontsize=9)
+                 f"{result.extra['grids']['n']}$^2$\nline style: Rx/Ry = 1 solid, 3 dashed, 10 dotted",
+                 fontsize=8)
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=6.5, loc="upper left", bbox_to_anchor=(1.02, 1.0))
     fig.set_layout_engine("tight")
@@ -626,8 +631,8 @@ def _plot_maps(result, circ, outdir) -> list:
                 v = Z[ei, hi_]
                 r_, g_, b_, _ = im.cmap(norm(v))
                 ink = "k" if 0.299 * r_ + 0.587 * g_ + 0.114 * b_ > 0.5 else "w"  # readable on the cell
-                ax.text(hi_, ei, f"{v:.2g}\n{w}" if key == "W_bar" else f"{v:.2g}", ha="center", va="center",
-                        fontsize=6, color=ink)
+                ax.text(hi_, ei, f"{v:.2g}\n{SHORT[w]}" if key == "W_bar" else f"{v:.2g}", ha="center",
+                        va="center", fontsize=6, color=ink)
             for ei in range(len(Es_)):
                 for hi_ in range(len(Hs)):
                     if not math.isfinite(Z[ei, hi_]):
@@ -640,7 +645,8 @@ def _plot_maps(result, circ, outdir) -> list:
             fig.colorbar(im, ax=ax, shrink=0.85)
     fig.suptitle(f"stresses study ({result.resolution}): circular contact, DC-FFT "
                  f"{result.extra['grids']['n']}$^2$, "
-                 "at first yield (text: first-yield location)", fontsize=9)
+                 "at first yield\n(text: first-yield location: surf = surface, coat = coating, "
+                 "intf = interface, subs = substrate)", fontsize=9)
     fig.set_layout_engine("tight")
     return C.save(fig, outdir, "stresses_maps")
 
