@@ -71,7 +71,8 @@ COLOURS = {"surface": "tab:orange", "coating": "tab:red", "interface": "tab:purp
 JUDGED = "DC-FFT stresses (full sliding, q = mu p)"
 #: (base grid, refined grid) per resolution
 GRIDS = {"tiny": (24, 32), "quick": (32, 48), "full": (64, 96)}
-#: loads solved per coated case (2: W_ys and the middle of the predicted onsets; 3: W_ys and both ends)
+#: loads solved per coated case (2: W_ys and one more, see :func:`onset`; 3: W_ys and both ends of the
+#: predicted onsets)
 LOADS = {"tiny": 2, "quick": 2, "full": 3}
 
 
@@ -267,7 +268,13 @@ def onset(sc: C.StudyCase, n: int, mu_values, W_ref: float, n_loads: int = 3) ->
     if p["H"] > 0:
         est = [W_ref * (Y / first["by_mu"][m]["vm"]) ** 3 for m in mu_values]
         lo, hi = min(est), max(est)
-        for W in ([lo, hi] if hi > 1.05 * lo and n_loads > 2 else [math.sqrt(lo * hi)]):
+        if n_loads > 2 and hi > 1.05 * lo:
+            extra = [lo, hi]
+        elif lo < W_ref < hi:  # one more load: the end farther from W_ref (the roots lie between)
+            extra = [max(lo, hi, key=lambda w: abs(math.log(w / W_ref)))]
+        else:  # the predicted range lies to one side of W_ref: its middle (the roots close to it)
+            extra = [math.sqrt(lo * hi)]
+        for W in extra:
             loads.append(maxima(make_case(p["ratio"], p["E"], p["H"], W), n, mu_values))
     loads.sort(key=lambda d: d["W"])
     lnW = np.log([d["W"] for d in loads])
