@@ -66,7 +66,8 @@ def surface_compliance(body, w: np.ndarray, ke2: np.ndarray) -> np.ndarray:
         G, nu = body
         return (1 - nu * ke2) / G
     Gc = body.layer.coating.G
-    x, xa = body.coefficients(np.maximum(w, 1e-300))
+    cc = body.coefficients(np.maximum(w, 1e-300))
+    x, xa = cc.x, cc.xa
     e = np.exp(-np.asarray(w) * body.h)
     inplane = (x[..., 0, 1] + x[..., 2, 1] * e) / (2 * Gc)
     antiplane = (xa[..., 0] + xa[..., 1] * e) / Gc

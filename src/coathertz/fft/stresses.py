@@ -626,7 +626,7 @@ def contact_stresses(case: ContactCase, result: ContactResult, *, body: int = 2,
             ModelValidityWarning, stacklevel=2)
     q = mu * p if mu > 0 else None
     if Q is not None:
-        q = _partial_slip_traction(case, grid, p, Q, mu, direction)
+        q = _partial_slip_traction(case, grid, p, Q, mu, direction, interface)
     sig = stresses_surface(grid, z, frf, p=p,
                            qx=None if q is None else np.cos(direction) * q,
                            qy=None if q is None else np.sin(direction) * q, pad=pad,
@@ -641,8 +641,9 @@ def contact_stresses(case: ContactCase, result: ContactResult, *, body: int = 2,
 
 
 def _partial_slip_traction(case: ContactCase, grid: Grid, p: np.ndarray, Q: float, mu: float,
-                           direction: float) -> np.ndarray:
-    """Cattaneo--Mindlin shear traction on the cell pressure (homogeneous bodies only)."""
+                           direction: float, interface: str = "bonded") -> np.ndarray:
+    """Cattaneo--Mindlin shear traction on the cell pressure (homogeneous or single-coated
+    bodies; normal--tangential coupling neglected, see :mod:`coathertz.fft.coupling`)."""
     from coathertz.fft.partial_slip import solve_partial_slip
 
     if Q >= mu * case.W:  # the case's load (the cell sum differs by the solver's tolerance)
@@ -651,10 +652,12 @@ def _partial_slip_traction(case: ContactCase, grid: Grid, p: np.ndarray, Q: floa
             "(full sliding, q = mu p; partial slip needs Q < mu W)")
     bodies = []
     for i, b in enumerate((case.body1, case.body2), start=1):
-        if b.coating is not None or b.is_stacked:
+        if b.is_stacked:
             raise CoatHertzError(
-                f"body{i}: partial slip (Q) needs homogeneous bodies; a coated body's tangential "
-                "compliance is not modelled yet")
-        if not b.material.is_rigid:
+                f"body{i}: partial slip (Q) takes homogeneous or single-coated bodies; the "
+                f"tangential compliance of a stack of {len(b.layers)} layers is not modelled yet")
+        if b.is_coated:  # the layered tangential compliance (partial_slip.surface_compliance)
+            bodies.append(body_frf(b, interface))
+        elif not b.material.is_rigid:
             bodies.append((b.material.G, b.material.nu))
     return solve_partial_slip(p, grid, bodies, Q, mu, direction).q
