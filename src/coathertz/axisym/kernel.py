@@ -144,7 +144,7 @@ STACK_PANEL, STACK_NODES, STACK_T_MIN, STACK_TABLE_TOL = 0.5, 16, 1e-8, 1e-13
 
 class _StackTable:
     """Piecewise-Chebyshev interpolant of ``F(t)`` in ``log t`` (``F`` is smooth there): a few
-    hundred 4x6 SVDs once per body instead of one per xi node and radius. Below ``STACK_T_MIN``
+    hundred evaluations once per body instead of one per xi node and radius. Below ``STACK_T_MIN``
     and above ``t_max`` (all layers 40 decay lengths deep: ``F = 1`` to 1e-30) exact values."""
 
     def __init__(self, F_direct, t_max: float) -> None:
