@@ -62,3 +62,19 @@ def test_peak_is_the_parabola_vertex(study):
     v, r = study._peak(rho, 2.0 - (rho - 0.437) ** 2)
     assert abs(v - 2.0) < 1e-14 and abs(r - 0.437) < 1e-14
     assert study._peak(rho, rho) == (1.0, 1.0)
+
+
+def test_second_field_on_the_same_nodes_reuses_them(study):
+    """A field on the xi nodes of the previous one (same depths, same largest radius) reuses the
+    nodes' layer coefficients and g^: it equals a fresh evaluation bit for bit, on either side."""
+    case = next(sc.case for sc in study.cases("tiny") if sc.id == "Ei=0.25,hi=1um")
+    res = AxisymMethod(keep_fields=False).solve(case)
+    z = [3e-6, 4e-6]
+    r = np.array([0.0, 0.5, 1.0, 2.5]) * res.a
+    S = AxisymStresses(case, res)
+    S.field(np.linspace(0.0, 2.5, 7) * res.a, z)
+    for side in ("below", "above"):
+        again = S.field(r, z, side=side).sigma
+        fresh = AxisymStresses(case, res).field(r, z, side=side).sigma
+        assert np.array_equal(again, fresh), side
+    assert S._on_nodes[1], "nothing kept"
