@@ -171,3 +171,24 @@ def test_steps_agree_where_they_meet(substrate, monkeypatch):
     monkeypatch.undo()
     Fc = stack_layer_factor(layers, substrate, k + 0j)
     assert np.abs(Fc - ref).max() < 1e-14 and np.abs(Fc.imag).max() == 0.0
+
+
+def test_table_long_wave_end_is_the_chord_to_the_exact_limit():
+    """Below ``k h_total = 1e-8`` the table uses the chord from the exact limit ``E_1*/E_s*`` (0 on
+    a rigid base): no direct evaluation per call (a thin stack's small xi nodes used to cost one
+    kernel evaluation each), and it equals direct evaluation to 1e-13 of max(|F|, 1) from
+    kh_min = 1e-18 up, for a 1 nm layer over 10 um (thickness ratio 1e4; measured <= 3.1e-15)."""
+    for sub in (STEEL, RIGID):
+        body = Body(sub, layers=(Layer(Material(800e9, 0.3), 1e-9),
+                                 Layer(Material(30e9, 0.45), 1e-5, "frictionless")))
+        Ft, _ = stack_factor(body)
+        Fd, _ = stack_factor(body, table=False)
+        assert Ft.ok, Ft.err
+        calls = []
+        Ft.F_direct = calls.append  # any direct evaluation is recorded (and fails the test)
+        t = np.logspace(-18, np.log10(Ft.t_min) - 1e-9, 60)
+        got = Ft(t)
+        assert not calls
+        ref = Fd(t)
+        err = np.max(np.abs(got - ref) / np.maximum(np.abs(ref), 1.0))
+        assert err < 1e-13, f"chord vs direct below t_min = {Ft.t_min:.1e}: {err:.2e}"
