@@ -43,6 +43,7 @@ import numpy as np
 
 from coathertz import verification as C
 from coathertz.case import ContactCase
+from coathertz.errors import CoatHertzError
 from coathertz.materials import Body, Layer, Material
 
 NAME = "multilayer"
@@ -280,11 +281,19 @@ def analyse_interfaces(result: C.StudyResult) -> None:
     rows, jump, stresses = [], 0.0, {}
     for cid in sorted(done, key=list(by_id).index):
         sc = by_id[cid]
-        S = stresses[cid] = AxisymStresses(sc.case, m.solve(sc.case), cut=CUT)
-        ir, j = interface_stresses(S)
+        try:
+            S = AxisymStresses(sc.case, m.solve(sc.case), cut=CUT)
+            ir, j = interface_stresses(S)
+        except CoatHertzError as e:  # reported, not fatal: one case must not sink the study
+            result.failures.append({"case": cid, **sc.params, "method": "axisym-interfaces",
+                                    "error": str(e)})
+            continue
+        stresses[cid] = S
         jump = max(jump, j)
         rows += [{"case": cid, **sc.params, **x} for x in ir]
     result.extra["interface_stresses"] = rows
+    if not rows:
+        return
     n_itf = len(rows)
     result.claims.append(C.Claim(
         "multilayer-bonded-tractions-continuous",
