@@ -525,7 +525,7 @@ def pressure_shape(sol: RadiusSolution) -> np.ndarray:
     ``p(rho) = E_ref / (pi a) sqrt(1 - rho^2) Q(rho^2)`` and ``Q`` is a polynomial of degree
     ``N - 2`` in ``rho^2``, so interpolation at ``N + 1`` Chebyshev points is exact; evaluating
     it costs ``O(N)`` per point instead of ``O(N^2)``. The coefficients are linear in ``c``:
-    :func:`_shape_matrix` (cached per ``N``) times ``c``.
+    ``_shape_matrix`` (cached per ``N``) times ``c``.
     """
     return _shape_matrix(sol.c.size) @ sol.c
 
