@@ -15,7 +15,7 @@ STEEL = Material(200e9, 0.3)
 T = np.logspace(-8, 2.5, 80)  # k h of the top layer
 COATINGS = [Material(800e9, 0.25), Material(50e9, 0.45), Material(300e9, 0.5), Material(2e9, 0.3)]
 
-#: Absolute tolerance on F (F is O(1); measured <= 1.1e-14: a 4x6 SVD per k, well scaled).
+#: Absolute tolerance on F (F is O(1); measured <= 5.3e-15: Plücker coordinates, bounded steps).
 TOL = 1e-12
 
 
@@ -136,3 +136,59 @@ def test_random_stacks_build_their_kernel_table():
         F0 = 0.0 if sub.is_rigid else body.layers[0].material.E_star / steel.E_star
         t_tot = 1e-6 * sum(L.h for L in body.layers) / h_min  # k * (total thickness) at t = 1e-6
         assert abs(float(F(np.array([1e-6]))[0]) - F0) < 50 * t_tot, body
+
+
+def test_thin_incompressible_layer_on_rigid_base_keeps_its_digits():
+    """A bonded incompressible layer on a rigid base has ``F ~ (2/3) t^3`` (kernel module), a
+    cancellation of order-one terms. The transfer-matrix step errs by ~1e-16 t absolute (relative
+    ``~ 1e-15 / t^2``; measured 4.8e-10 at t = 1e-3, 1.6e-8 at 1e-4, 2.3e-6 at 1e-5); the former
+    null-space form erred by ~1e-16 absolute (2.4e-7, 2.0e-5, 0.14)."""
+    c = Material(300e9, 0.5)
+    t = np.logspace(-5, -1, 25)
+    F = stack_layer_factor([StackLayer(c, 1.0)], RIGID, t)
+    ref = layer_factor_bonded(c, RIGID)(t)
+    err = np.abs(F / ref - 1.0) * t**2
+    assert err.max() < 1e-14, f"relative error of F ~ t^3 times t^2: {err.max():.2e}"
+
+
+@pytest.mark.parametrize("substrate", [STEEL, RIGID], ids=["elastic", "rigid"])
+def test_steps_agree_where_they_meet(substrate, monkeypatch):
+    """The three steps through a layer (transfer matrix below |kh| = T_THIN, bounded basis above,
+    the layer's own half-space from Re kh = T_DEEP) give the same F where each could serve: moving
+    the switches changes a 3-layer stack's F by round-off only (measured <= 1.3e-14); complex k
+    with zero imaginary part gives the real values to round-off (3.3e-15; analytic continuation)."""
+    from coathertz import stack
+
+    layers = [StackLayer(Material(300e9, 0.2), 1.0), StackLayer(Material(20e9, 0.5), 0.5, "frictionless"),
+              StackLayer(Material(900e9, 0.25), 2.0)]
+    k = np.logspace(-2, 2.5, 200)
+    ref = stack_layer_factor(layers, substrate, k)
+    for thin, deep in ((0.3, 25.0), (3.0, 25.0), (1.0, 22.0), (1.0, 60.0)):
+        monkeypatch.setattr(stack, "T_THIN", thin)
+        monkeypatch.setattr(stack, "T_DEEP", deep)
+        err = np.abs(stack_layer_factor(layers, substrate, k) - ref).max()
+        assert err < 1e-13, f"switches at |kh| = {thin}, Re kh = {deep}: max |dF| = {err:.2e}"
+    monkeypatch.undo()
+    Fc = stack_layer_factor(layers, substrate, k + 0j)
+    assert np.abs(Fc - ref).max() < 1e-14 and np.abs(Fc.imag).max() == 0.0
+
+
+def test_table_long_wave_end_is_the_chord_to_the_exact_limit():
+    """Below ``k h_total = 1e-8`` the table uses the chord from the exact limit ``E_1*/E_s*`` (0 on
+    a rigid base): no direct evaluation per call (a thin stack's small xi nodes used to cost one
+    kernel evaluation each), and it equals direct evaluation to 1e-13 of max(|F|, 1) from
+    kh_min = 1e-18 up, for a 1 nm layer over 10 um (thickness ratio 1e4; measured <= 3.1e-15)."""
+    for sub in (STEEL, RIGID):
+        body = Body(sub, layers=(Layer(Material(800e9, 0.3), 1e-9),
+                                 Layer(Material(30e9, 0.45), 1e-5, "frictionless")))
+        Ft, _ = stack_factor(body)
+        Fd, _ = stack_factor(body, table=False)
+        assert Ft.ok, Ft.err
+        calls = []
+        Ft.F_direct = calls.append  # any direct evaluation is recorded (and fails the test)
+        t = np.logspace(-18, np.log10(Ft.t_min) - 1e-9, 60)
+        got = Ft(t)
+        assert not calls
+        ref = Fd(t)
+        err = np.max(np.abs(got - ref) / np.maximum(np.abs(ref), 1.0))
+        assert err < 1e-13, f"chord vs direct below t_min = {Ft.t_min:.1e}: {err:.2e}"

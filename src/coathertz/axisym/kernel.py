@@ -137,30 +137,45 @@ def layer_factor_frictionless(coating: Material, substrate: Material) -> LayerFa
 
 
 #: Interpolation table of a stack's ``F``: Chebyshev panels of this width in ``log t``, this many
-#: nodes each, from ``t = STACK_T_MIN``; accepted only if it matches direct evaluation to
-#: ``STACK_TABLE_TOL`` at the panel midpoints (otherwise ``F`` is evaluated directly).
+#: nodes each, from ``t = STACK_T_MIN h_min / h_total`` (``k h_total = STACK_T_MIN``); accepted
+#: only if it matches direct evaluation to ``STACK_TABLE_TOL`` of ``max(|F|, 1)`` at the panel
+#: midpoints and below its start (otherwise ``F`` is evaluated directly).
 STACK_PANEL, STACK_NODES, STACK_T_MIN, STACK_TABLE_TOL = 0.5, 16, 1e-8, 1e-13
 
 
 class _StackTable:
     """Piecewise-Chebyshev interpolant of ``F(t)`` in ``log t`` (``F`` is smooth there): a few
-    hundred 4x6 SVDs once per body instead of one per xi node and radius. Below ``STACK_T_MIN``
-    and above ``t_max`` (all layers 40 decay lengths deep: ``F = 1`` to 1e-30) exact values."""
+    hundred evaluations once per body instead of one per xi node and radius. Below ``t_min``
+    (``k h_total <= 1e-8``: ``F`` is analytic in ``k h_total`` there) the chord from the exact
+    long-wave limit ``F0`` (:func:`stack_factor`) to ``F(t_min)``, off by ``~F'' t_min^2 / 8``
+    (~1e-17); above ``t_max`` (all layers 40 decay lengths deep: ``F = 1`` to 1e-30) exactly 1."""
 
-    def __init__(self, F_direct, t_max: float) -> None:
+    def __init__(self, F_direct, t_min: float, t_max: float, F0: float) -> None:
         self.F_direct = F_direct
-        self.s0, self.s1 = math.log(STACK_T_MIN), math.log(t_max)
+        self.s0, self.s1 = math.log(t_min), math.log(t_max)
+        self.t_min, self.F0 = t_min, F0
         self.n_pan = max(1, math.ceil((self.s1 - self.s0) / STACK_PANEL))
         self.w = (self.s1 - self.s0) / self.n_pan
         x = np.cos(np.pi * (np.arange(STACK_NODES) + 0.5) / STACK_NODES)  # Chebyshev points
         s = self.s0 + self.w * (np.arange(self.n_pan)[:, None] + 0.5 * (x[None, :] + 1.0))
-        vals = F_direct(np.exp(s.ravel())).reshape(s.shape)
+        # the nodes, the panels' check points and the chord's end and check points in one call
+        mid = self.s0 + self.w * (np.arange(self.n_pan) + 0.37)
+        below = t_min * np.array([1.0, 0.3, 1e-3])
+        vals = F_direct(np.concatenate([np.exp(s.ravel()), np.exp(mid), below]))
+        n = s.size
         # interpolation at the Chebyshev points: one solve for all panels (was chebfit per panel)
         V = npcheb.chebvander(x, STACK_NODES - 1)
-        self.coef = np.linalg.solve(V, vals.T).T
-        mid = self.s0 + self.w * (np.arange(self.n_pan) + 0.37)
-        t_mid = np.exp(mid)
-        self.ok = bool(np.max(np.abs(self._interp(t_mid) - F_direct(t_mid))) < STACK_TABLE_TOL)
+        self.coef = np.linalg.solve(V, vals[:n].reshape(s.shape).T).T
+        self.F_lo = float(vals[-3])
+        # relative to max(|F|, 1): F reaches E_1*/E_s* (~70 for a stiff top on a soft stack), where
+        # round-off alone is 1e-13 absolute
+        ref = vals[n:]
+        got = np.concatenate([self._interp(np.exp(mid)), [self.F_lo], self._chord(below[1:])])
+        self.err = float(np.max(np.abs(got - ref) / np.maximum(np.abs(ref), 1.0)))
+        self.ok = self.err < STACK_TABLE_TOL
+
+    def _chord(self, t: np.ndarray) -> np.ndarray:
+        return self.F0 + (self.F_lo - self.F0) * (t / self.t_min)
 
     def _interp(self, t: np.ndarray) -> np.ndarray:
         s = np.log(t)
@@ -180,10 +195,10 @@ class _StackTable:
         if not self.ok:
             return self.F_direct(flat).reshape(t.shape)
         out = np.ones_like(flat)
-        lo = flat < STACK_T_MIN
+        lo = flat < self.t_min
         mid = ~lo & (flat <= math.exp(self.s1))
         if np.any(lo):
-            out[lo] = self.F_direct(flat[lo])
+            out[lo] = self._chord(flat[lo])
         if np.any(mid):
             out[mid] = self._interp(flat[mid])
         return out.reshape(t.shape)
@@ -192,7 +207,9 @@ class _StackTable:
 def stack_factor(body: Body, table: bool = True) -> tuple[LayerFactor, float]:
     """``F`` of a body with a layer stack (:mod:`coathertz.stack`) as a function of
     ``t = k h_min`` and ``h_min``, the thinnest layer [m] (it sets the decay of ``M``);
-    ``table``: through ``_StackTable`` (checked against direct evaluation)."""
+    ``table``: through ``_StackTable`` (checked against direct evaluation), whose long-wave end
+    is the exact limit ``F(0) = E_1^*/E_s^*`` (0 on a rigid substrate: the substrate under a
+    stack much thinner than the wave)."""
     from coathertz.stack import StackLayer, stack_layer_factor
 
     layers = [StackLayer(L.material, L.h, L.interface) for L in body.layers]
@@ -204,7 +221,9 @@ def stack_factor(body: Body, table: bool = True) -> tuple[LayerFactor, float]:
 
     if not table:
         return F, h_min
-    return _StackTable(F, 40.0 * sum(L.h for L in body.layers) / h_min), h_min
+    ratio = sum(L.h for L in body.layers) / h_min
+    F0 = 0.0 if body.material.is_rigid else body.layers[0].material.E_star / body.material.E_star
+    return _StackTable(F, STACK_T_MIN / ratio, 40.0 * ratio, F0), h_min
 
 
 def body_layer_factor(body: Body, interface: str) -> LayerFactor | None:

@@ -524,14 +524,42 @@ def pressure_shape(sol: RadiusSolution) -> np.ndarray:
 
     ``p(rho) = E_ref / (pi a) sqrt(1 - rho^2) Q(rho^2)`` and ``Q`` is a polynomial of degree
     ``N - 2`` in ``rho^2``, so interpolation at ``N + 1`` Chebyshev points is exact; evaluating
-    it costs ``O(N)`` per point instead of ``O(N^2)``.
+    it costs ``O(N)`` per point instead of ``O(N^2)``. The coefficients are linear in ``c``:
+    ``_shape_matrix`` (cached per ``N``) times ``c``.
     """
-    deg = sol.c.size
+    return _shape_matrix(sol.c.size) @ sol.c
 
-    def Q(v: np.ndarray) -> np.ndarray:
-        return _abel_integral(sol.c, np.sqrt(np.clip(0.5 * (v + 1.0), 0.0, 1.0)))
 
-    return npcheb.chebinterpolate(Q, deg)
+@lru_cache(maxsize=16)
+def _shape_matrix(n_modes: int) -> np.ndarray:
+    """The linear map ``c -> pressure_shape``: ``numpy.polynomial.chebyshev.chebinterpolate`` of
+    ``Q`` (degree ``N``, the first-kind points ``v_i``) with ``Q(v_i) = sum_n c_n q_n(v_i)``,
+    ``q_n = -int_0^1 P'_2n(x)/x ds`` by the Gauss rule of :func:`_abel_integral` (exact: the
+    integrand is a polynomial of degree ``4 N - 4`` in ``s``), the ``P'_k`` by their recurrence
+    at all nodes at once (two ``legval`` passes' work, once per ``N``, instead of one per solve)."""
+    deg = n_modes
+    v = npcheb.chebpts1(deg + 1)
+    rho2 = np.clip(0.5 * (v + 1.0), 0.0, 1.0)
+    s, ws = _half_gauss(n_modes + 2)
+    x = np.sqrt(rho2[:, None] + (1.0 - rho2[:, None]) * s[None, :] ** 2)  # (deg + 1, n_s), > 0
+    # P_k and P'_k up to k = 2N - 2: P_{k+1} = ((2k+1) x P_k - k P_{k-1})/(k+1),
+    # P'_{k+1} = P'_{k-1} + (2k+1) P_k
+    q = np.empty((n_modes, deg + 1))
+    p_prev, p = np.ones_like(x), x.copy()  # P_0, P_1
+    d_prev, d = np.zeros_like(x), np.ones_like(x)  # P'_0, P'_1
+    q[0] = 0.0
+    for k in range(1, 2 * n_modes - 2):
+        p_next = ((2 * k + 1) * x * p - k * p_prev) / (k + 1)
+        d_next = d_prev + (2 * k + 1) * p
+        p_prev, p, d_prev, d = p, p_next, d, d_next
+        if (k + 1) % 2 == 0:  # P'_{2n}, 2n = k + 1
+            q[(k + 1) // 2] = -((d / x) @ ws)
+    m = npcheb.chebvander(v, deg)
+    A = m.T @ q.T  # (deg + 1, N): chebinterpolate's np.dot(m.T, Q(v_i)) for every c = e_n
+    A[0] /= deg + 1
+    A[1:] /= 0.5 * (deg + 1)
+    A.flags.writeable = False
+    return A
 
 
 def pressure(pc: PairCompliance, sol: RadiusSolution, rho: np.ndarray,

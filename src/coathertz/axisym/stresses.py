@@ -106,6 +106,9 @@ CUT = 32.0
 #: ~4e-4 a for radii to 3a); the cost grows like ``radii x nodes``.
 MAX_NODES = 600_000
 SIDES = ("above", "below")
+#: Fields on at most this many xi nodes keep the nodes' coefficients and ``g^`` for the next field
+#: on the same nodes (e.g. the other side of an interface; <= ~10 MB).
+CACHE_NODES = 50_000
 
 
 @dataclass(frozen=True)
@@ -361,6 +364,9 @@ class AxisymStresses:
             edge_condition=result.meta.get("edge_condition", "point"))
         self.a = result.a
         self.scale = self.pc.E_ref / (math.pi * self.a)  # sigma = scale * int S g^ J xi dxi
+        # the layers' coefficients and g^ on the xi nodes of the last field (they depend on the
+        # nodes only, not on r, z or side): a second field on the same nodes reuses them
+        self._on_nodes: tuple[tuple, dict[int, tuple[np.ndarray, np.ndarray]]] = ((), {})
 
     # closed-form surface pieces -----------------------------------------------------------------
     def pressure(self, r: np.ndarray) -> np.ndarray:
@@ -433,6 +439,10 @@ class AxisymStresses:
                 f"the Hankel quadrature (needs {n_nodes} nodes > {MAX_NODES}); use z = 0 (exact "
                 f"surface limit) or z >= {self.min_depth(float(r.max())):g} m")
         xi, w = _xi_nodes(X, width, self.order)
+        key = (X, width, chunk)
+        if self._on_nodes[0] != key:
+            self._on_nodes = (key, {})
+        kept = self._on_nodes[1] if xi.size <= CACHE_NODES else {}
         top = self.response.parts[0].material if self.response.parts else self.response.substrate
         nu1 = top.nu
         nz = z.size
@@ -443,8 +453,10 @@ class AxisymStresses:
                 break
             xs = xi[i:i + chunk]
             k = xs / a
-            coef = self.response.coefficients(k)
-            base = _g_hat(self.sol, xs) * xs * w[i:i + chunk] * self.scale
+            if i not in kept:
+                g = _g_hat(self.sol, xs) * xs * w[i:i + chunk] * self.scale
+                kept[i] = (self.response.coefficients(k), g)
+            coef, base = kept[i]
             V = np.empty((4, xs.size, act.size))  # zz (J0), trace (J0), deviator (J2), rz (J1)
             for col, j in enumerate(act):
                 kk, pp, zz, kz = self.response.rows(k, coef, float(z[j]), side)
