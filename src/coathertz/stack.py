@@ -209,3 +209,61 @@ def stack_layer_factor(layers: Sequence[StackLayer], substrate: Material, k: np.
     # surface: sigma_zz = -1, sigma_xz = 0: u_z = -X_03 / X_23 (Cramer's rule on the two columns)
     uz = -X[:, 0, 3] / X[:, 2, 3]
     return 0.5 * top.E_star * uz / G_ref
+
+
+# --- The layer states in the bounded basis, for fields *inside* the layers (the FFT stresses of
+# a stack, :mod:`coathertz.fft.stack_stresses`, sweep spanning states with these; F above uses
+# the Plücker form). Same definitions as the module docstring's ``S`` and bounded basis.
+
+
+def _state(f: np.ndarray, G: float, nu: float) -> np.ndarray:
+    """``(u_z, u_x, sigma_zz, sigma_xz)`` from ``f, f', f'', f'''`` (shape ``(4, ...)``)."""
+    f0, f1, f2, f3 = f
+    return np.stack([(-(2.0 - nu) * f1 + (1.0 - nu) * f3) / (2.0 * G),
+                     ((1.0 - nu) * f2 + nu * f0) / (2.0 * G), -f0, f1])
+
+
+def _basis(z: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """``f, f', f'', f'''`` of the four bounded basis functions at depth ``z`` in a layer of
+    thickness ``t`` (``z``, ``t`` arrays of the same shape): shape ``(4 derivs, 4 funcs, ...)``."""
+    e1 = np.exp(-z)
+    e2 = np.exp(z - t)
+    s = t - z
+    out = np.empty((4, 4, *np.shape(z)), dtype=np.result_type(z, t, float))
+    # e^{-z}
+    out[:, 0] = np.stack([e1, -e1, e1, -e1])
+    # z e^{-z}
+    out[:, 1] = np.stack([z * e1, (1.0 - z) * e1, (z - 2.0) * e1, (3.0 - z) * e1])
+    # e^{z - t}
+    out[:, 2] = np.stack([e2, e2, e2, e2])
+    # (t - z) e^{z - t} = s e^{-s}, d/dz = -d/ds
+    out[:, 3] = np.stack([s * e2, -(1.0 - s) * e2, (s - 2.0) * e2, -(3.0 - s) * e2])
+    return out
+
+
+def state_matrix(z: np.ndarray, t: np.ndarray, mat: Material, G_ref: float) -> np.ndarray:
+    """State matrix ``(..., 4 states, 4 funcs)`` of a layer at depth ``z`` (displacements in units
+    of ``1/G_ref``, so that all four rows are of order one)."""
+    G = mat.E / (2.0 * (1.0 + mat.nu)) / G_ref
+    st = _state(_basis(z, t), G, mat.nu)  # (4 states, 4 funcs, ...)
+    return np.moveaxis(st, (0, 1), (-2, -1))
+
+
+def half_space_states(k: np.ndarray, mat: Material, G_ref: float) -> np.ndarray:
+    """Admissible top states of an elastic half-space: ``f = (A + B z) e^{-z}`` at ``z = 0``."""
+    G = mat.E / (2.0 * (1.0 + mat.nu)) / G_ref
+    z = np.zeros_like(k)
+    b = _basis(z, z)[:, :2]  # (4 derivs, 2 funcs, n)
+    return np.moveaxis(_state(b, G, mat.nu), (0, 1), (-2, -1))
+
+
+def frictionless_span(B: np.ndarray) -> np.ndarray:
+    """The subspace above a frictionless interface, as two spanning states (columns of ``B``,
+    ``(..., 4, 2)``): the member of ``span(B)`` with ``sigma_xz = 0`` and a free ``u_x`` (the
+    spanning-state form of :func:`_frictionless`, for fields inside the layers)."""
+    c = np.stack([B[..., 3, 1], -B[..., 3, 0]], axis=-1)  # B c has sigma_xz = 0
+    v = np.einsum("...ij,...j->...i", B, c)
+    v = v / np.linalg.norm(v, axis=-1, keepdims=True)
+    e = np.zeros_like(v)  # same dtype (complex k: analytic continuation for Taylor coefficients)
+    e[..., 1] = 1.0
+    return np.stack([v, e], axis=-1)

@@ -22,8 +22,9 @@ layer of scaled thickness ``t = w h`` (local depth ``0 <= s <= t``, ``u = t - s`
 :mod:`coathertz.stack`: no growing exponential, independent as ``t -> 0``); in an elastic
 substrate ``f = c_1 e^{-s} + c_2 s e^{-s}``.
 
-The coefficients come from the stack kernel's own sweep (the :mod:`coathertz.stack` helpers
-``_M``, ``_half_space``, ``_frictionless``), recorded and run back down:
+The coefficients come from a null-space sweep over the stack kernel's own layer states (the
+:mod:`coathertz.stack` definitions ``state_matrix``, ``half_space_states``,
+``frictionless_span``; the kernel itself carries Plücker coordinates), recorded and run back down:
 
 * *Up.* ``B_j`` (4 x 2, orthonormalised columns) spans the admissible states
   ``(u_z, u_k, sigma_zz, sigma_kz)`` at the top of layer ``j`` and everything below it. Start
@@ -73,7 +74,7 @@ import numpy as np
 
 from coathertz.errors import CoatHertzError
 from coathertz.materials import Material
-from coathertz.stack import _M, StackLayer, _frictionless, _half_space
+from coathertz.stack import StackLayer, frictionless_span, half_space_states, state_matrix
 
 #: Smallest ``w H`` solved (``H`` the stack's thickness); ``w = 0`` is evaluated there.
 T_MIN = 1e-6
@@ -149,7 +150,7 @@ class StackStressFRF:
             B = np.zeros((n, 4, 2))
             B[:, 2, 0] = B[:, 3, 1] = 1.0
         else:
-            B = _half_space(w, self.substrate, G_ref)
+            B = half_space_states(w, self.substrate, G_ref)
         below = B  # the lower region's own basis (its states are B c)
         ups = []
         for j in range(len(self.layers) - 1, -1, -1):
@@ -159,12 +160,12 @@ class StackStressFRF:
                 c0 = np.stack([below[..., 3, 1], -below[..., 3, 0]], axis=-1)
                 nv = np.linalg.norm(np.einsum("nij,nj->ni", below, c0), axis=-1)
                 fric = (c0, nv)
-                B_used = _frictionless(below)
+                B_used = frictionless_span(below)
             else:
                 B_used = below
             t = w * L.h
-            Mt = _M(t, t, L.material, G_ref)
-            M0 = _M(np.zeros_like(t), t, L.material, G_ref)
+            Mt = state_matrix(t, t, L.material, G_ref)
+            M0 = state_matrix(np.zeros_like(t), t, L.material, G_ref)
             A = np.concatenate([Mt, -B_used], axis=-1)
             Q, _ = np.linalg.qr(np.swapaxes(A, -1, -2), mode="complete")
             Nj = Q[:, :, 4:]
