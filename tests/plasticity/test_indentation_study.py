@@ -27,7 +27,7 @@ def test_indentation_protocol():
     assert p0y == pytest.approx(1.61, abs=0.005) and zy == pytest.approx(0.48, abs=0.005)  # Johnson 6.2
     assert 40 < W < 50 and z == pytest.approx(zy * a)  # p0 = 1.6 GPa on steel under R = 10 mm
     # Kogut & Etsion's critical values: p0 at delta_c is K H = (0.454 + 0.41 nu) 2.8 Y (Hertz)
-    dc, Pc, ac = S.critical(1000)
+    _, _, ac = S.critical(1000)
     Es = S.material(1000).E_star
     assert 2 * Es * ac / (math.pi * S.R) == pytest.approx((0.454 + 0.41 * 0.3) * 2.8 * 0.2e9, rel=1e-12)
     assert S.observed_order((1.0, 0.5, 0.25), 2.0) == pytest.approx(1.0)
@@ -103,7 +103,8 @@ def test_indentation_study_tiny(tmp_path):
     """~4 s CPU: E/Y = 1000 to delta/delta_c = 6 (n_a = 6, 3 targets; check n_a = 4, 5 targets)
     and the exact coated onset. Measured: P/Pc = 12.70 at delta/delta_c = 6 (Kogut & Etsion
     13.23, -4.1 %; Jackson & Green 13.00, -2.3 %; uncertainty 0.9 %), a/ac = 2.68 (within 1 %
-    of both, uncertainty 10 %: inconclusive), elastic recovery 4.36 delta_c in the bounds [3.16, 4.74], exact onset W_y 0.17 %
+    of both, uncertainty 10 %: inconclusive), elastic recovery 4.36 delta_c in the bounds
+    [3.16, 4.74], exact onset W_y 0.17 %
     and z/a 2.1 % off the closed form. A rerun on the same store solves nothing and gives the
     same claims."""
     S = get_study("indentation")
@@ -118,7 +119,8 @@ def test_indentation_study_tiny(tmp_path):
         claims.append({c.id: c for c in r.claims})
     assert {k: c.value for k, c in claims[0].items()} == {k: c.value for k, c in claims[1].items()}
     c = claims[0]
-    for cid in ("indentation-P-KE-EY=1000", "indentation-P-JG-EY=1000", "indentation-residual-EY=1000", "indentation-onset-exact-coating-W",
+    for cid in ("indentation-P-KE-EY=1000", "indentation-P-JG-EY=1000", "indentation-residual-EY=1000",
+                "indentation-onset-exact-coating-W",
                 "indentation-onset-exact-coating-z"):
         assert c[cid].verdict == C.VERDICTS[0], (cid, c[cid])
     assert 3.0 < c["indentation-P-KE-EY=1000"].value < 5.0
