@@ -414,7 +414,7 @@ def _path_claims(result: C.StudyResult, p: dict, pt: dict, checks: list[dict]) -
             result.claims.append(
                 C.Claim(
                     f"indentation-{q}-{tag}-{pid}",
-                    f"E/Y = {EY}: {name} vs {ref}, worst over {ok.sum()} targets "
+                    f"E/Y = {EY}: {name} vs {ref}, worst over {C.plural(int(ok.sum()), 'target')} "
                     f"(delta/delta_c {xs[0]:.3g}-{xs[-1]:.3g})",
                     float(err[k]),
                     f"< {LOAD_BOUND:g} %",
