@@ -42,9 +42,12 @@ Checked, per resolution (``tiny`` tests, ``quick`` the main job, ``full`` the pa
   finite deformation, which the model leaves out.)
 
 Uncertainties: every value of a path is also computed on a second discretisation (``tiny`` and
-``quick``: a coarser mesh with twice as many increments; ``full``: the coarse mesh, and half the
-increments on the default mesh); the uncertainty is twice the difference (first-order Richardson
-of each refinement), summed over the checks. Onsets: twice the difference to a coarser elastic
+``quick``: a coarser mesh with about twice as many increments; ``full``: the coarse mesh, and
+half the increments on the default mesh); the uncertainty is the Richardson error estimate of
+each check, summed: twice the difference for a mesh check, ``1/(r^p - 1)`` times it for a check
+with ``r`` times the increments, with the measured order ``p`` = :data:`STEP_ORDER` = 0.5 (the
+increment error converges slowly: P at delta/delta_c = 20 rises by 3 % from 5 to 40
+increments). Onsets: twice the difference to a coarser elastic
 mesh. Mesh and step convergence at :math:`\delta/\delta_c = 20` (``full``): three meshes and three
 step counts, observed orders (``extra["convergence"]``).
 
@@ -347,12 +350,31 @@ def _common(main: dict, other: dict, key: str) -> dict[float, float]:
     return out
 
 
+#: Observed order of the increment error of P at delta/delta_c = 20 (E/Y = 1000; 5, 10, 20, 40
+#: geometric increments, n_a = 6 and 12): 0.0-0.6, P still rising by 0.7 % per doubling at 40.
+#: The uncertainty of a value checked against a path with other increments uses this order.
+STEP_ORDER = 0.5
+
+
+def richardson_factor(main: dict, check: dict) -> float:
+    """Factor from ``|main - check|`` to the error of ``main``: ``1 / (r^p - 1)`` with ``r`` the
+    ratio of the two paths' increments and ``p`` = :data:`STEP_ORDER` where they differ in the
+    increments, else 2 (a mesh check: first order, ratio ~1.5-1.7)."""
+    n_m, n_c = len(main["x"]), len(check["x"])
+    if n_m == n_c:
+        return 2.0
+    r = max(n_m, n_c) / min(n_m, n_c)
+    return 1.0 / (r**STEP_ORDER - 1.0)
+
+
 def path_uncertainty(main: dict, checks: list[dict], key: str) -> dict[float, float]:
-    """``x -> u`` of ``main[key]``: twice the difference to each check at the common targets, summed."""
+    """``x -> u`` of ``main[key]``: the difference to each check at the common targets times its
+    :func:`richardson_factor`, summed over the checks."""
     u: dict[float, float] = {}
     for chk in checks:
+        f = richardson_factor(main, chk)
         for x, d in _common(main, chk, key).items():
-            u[x] = u.get(x, 0.0) + 2.0 * d
+            u[x] = u.get(x, 0.0) + f * d
     return u
 
 
@@ -491,7 +513,8 @@ def _path_claims(result: C.StudyResult, p: dict, pt: dict, checks: list[dict]) -
     rec, lo, hi = recovery_bounds(EY, pt)
     out["recovery"] = [rec, lo, hi]
     if math.isfinite(rec):
-        u = 2.0 * sum(abs(pt["residual"] - c["residual"]) for c in checks) if checks else math.nan
+        u = (sum(richardson_factor(pt, c) * abs(pt["residual"] - c["residual"]) for c in checks)
+             if checks else math.nan)
         holds, inconc = C.judge("within", rec, (lo, hi), u)
         result.claims.append(
             C.Claim(
