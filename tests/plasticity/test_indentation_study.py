@@ -102,9 +102,9 @@ def test_bad_settings_one_line():
 def test_indentation_study_tiny(tmp_path):
     """~4 s CPU: E/Y = 1000 to delta/delta_c = 6 (n_a = 6, 3 targets; check n_a = 4, 5 targets)
     and the exact coated onset. Measured: P/Pc = 12.70 at delta/delta_c = 6 (Kogut & Etsion
-    13.23, -4.1 %; Jackson & Green 13.00, -2.3 %; uncertainty 1.6 %), a/ac = 2.68 (within 1 %
-    of both, uncertainty 17 %: inconclusive), elastic recovery 4.36 delta_c in the bounds
-    [3.16, 4.74], exact onset W_y 0.17 %
+    13.23, -4.1 %; Jackson & Green 13.00, -2.3 %; uncertainty 2.9 %), a/ac = 2.68 (within 1 %
+    of both, uncertainty ~30 %: inconclusive), elastic recovery 4.36 delta_c in the bounds
+    [3.16, 4.74] (+-0.42), exact onset W_y 0.17 %
     and z/a 2.1 % off the closed form. A rerun on the same store solves nothing and gives the
     same claims."""
     S = get_study("indentation")
@@ -119,19 +119,21 @@ def test_indentation_study_tiny(tmp_path):
         claims.append({c.id: c for c in r.claims})
     assert {k: c.value for k, c in claims[0].items()} == {k: c.value for k, c in claims[1].items()}
     c = claims[0]
-    for cid in ("indentation-P-JG-EY=1000", "indentation-residual-EY=1000",
-                "indentation-onset-exact-coating-W", "indentation-onset-exact-coating-z"):
+    for cid in ("indentation-onset-exact-coating-W", "indentation-onset-exact-coating-z"):
         assert c[cid].verdict == C.VERDICTS[0], (cid, c[cid])
-    # 4.1 % below Kogut & Etsion, +-1.6 % (3 vs 5 increments at the measured order 0.5): inconclusive
-    ke = c["indentation-P-KE-EY=1000"]
-    assert 3.0 < ke.value < 5.0 and 1.0 < ke.uncertainty < 2.0 and ke.inconclusive
+    # 4.1 % below Kogut & Etsion and 2.3 % below Jackson & Green, +-2.9 % (3 vs 5 increments at
+    # the order 0.3 of the increment error): both inconclusive against 5 %
+    ke, jg = c["indentation-P-KE-EY=1000"], c["indentation-P-JG-EY=1000"]
+    assert 3.0 < ke.value < 5.0 and 1.0 < jg.value < 3.0 and 2.0 < ke.uncertainty < 4.0
+    assert ke.inconclusive and jg.inconclusive
     assert c["indentation-onset-exact-coating-W"].value < 0.5
     # the radius: within 1 % of the fits, but its check (n_a = 4: 3 elements across a) is too
-    # coarse to decide a 5 % bound (uncertainty ~17 %): inconclusive
+    # coarse to decide a 5 % bound (uncertainty ~30 %): inconclusive
     assert c["indentation-a-KE-EY=1000"].value < 1.0 and c["indentation-a-JG-EY=1000"].value < 1.0
     cv = r.extra["curves"]["EY=1000"]
     assert cv["x"][-1] == pytest.approx(6.0) and cv["P"][-1] == pytest.approx(12.7, rel=0.02)
     rec, lo, hi = cv["recovery"]
-    assert lo < rec < hi
+    assert lo < rec < hi  # 0.38 delta_c inside, uncertainty 0.42 delta_c: inconclusive
+    assert c["indentation-residual-EY=1000"].holds and c["indentation-residual-EY=1000"].inconclusive
     files = S.plot(r, tmp_path / "fig")
     assert {p.name for p in files} >= {"indentation_curves.png", "indentation_zone.png"}
