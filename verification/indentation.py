@@ -35,6 +35,9 @@ Checked, per resolution (``tiny`` tests, ``quick`` the main job, ``full`` the pa
   search) lies between the path's last elastic and first plastic increments; plastic zone and
   residual interface stresses reported. The exact coated case (Yc = Ys/2, the substrate's
   elastic constants) is loaded too: Hertz's closed-form onset must fall inside that bracket.
+  The bracket comes from a short path of its own (to 1.5 or 0.5 Hertz onset approaches of the
+  substrate, default mesh): on the deep path (to 6) the first increments' contact spans 2-3
+  elements and the edge stresses yield the body early.
 - **Self-similarity** (``full``, exact): the small-strain model of a paraboloid on a half-space
   has no length scale but :math:`\delta_c`, so the normalised curves of E/Y = 500 and 1000 must
   agree to round-off. (So the three E/Y differ only in how far their paths go: E/Y = 200 stops
@@ -212,13 +215,26 @@ def coated_plan(resolution: str) -> list[dict]:
     hard = Material(400e9, 0.25)
     steel = Material(E, NU, plasticity=Plasticity(YS))
     return [
-        {"id": "coated:hard-on-yielding", "coating": hard, "substrate": steel, "h": 0.5 * a_ys},
-        {"id": "coated:yielding-on-hard", "coating": steel, "substrate": hard, "h": 1.0 * a_ys},
+        {
+            "id": "coated:hard-on-yielding",
+            "coating": hard,
+            "substrate": steel,
+            "h": 0.5 * a_ys,
+            "onset_top": 1.5,
+        },
+        {
+            "id": "coated:yielding-on-hard",
+            "coating": steel,
+            "substrate": hard,
+            "h": 1.0 * a_ys,
+            "onset_top": 1.5,
+        },
         {
             "id": "coated:exact",
             "coating": Material(E, NU, plasticity=Plasticity(0.5 * YS)),
             "substrate": steel,
             "h": onset_closed_form(0.5 * YS)[1],
+            "onset_top": 0.5,
         },
     ]
 
@@ -257,6 +273,18 @@ def jobs(resolution: str) -> list:
                 _coated_case(p, 6.0 * W_ys),
                 PATH_METHOD,
                 path_settings(COARSE, targets, 6.0 * d_ys, 6),
+            )
+        )
+        # the onset bracket on its own short path, its mesh sized for it: on the deep path the first
+        # increments' contact spans 2-3 elements and yields early (the exact case at 0.04 W_ys,
+        # against Hertz's 0.125 W_ys; resolved, 8 elements: [0.117, 0.147] W_ys)
+        top = p["onset_top"]
+        out.append(
+            Job(
+                p["id"] + "/onset-path",
+                _coated_case(p, W_ys),
+                PATH_METHOD,
+                path_settings(DEFAULT, list(d_ys * np.geomspace(0.2 * top, top, 12)), top * d_ys, 0),
             )
         )
         coat, sub = p["coating"].plasticity, p["substrate"].plasticity
@@ -516,8 +544,11 @@ def _path_claims(result: C.StudyResult, p: dict, pt: dict, checks: list[dict]) -
     rec, lo, hi = recovery_bounds(EY, pt)
     out["recovery"] = [rec, lo, hi]
     if math.isfinite(rec):
-        u = (sum(richardson_factor(pt, c) * abs(pt["residual"] - c["residual"]) for c in checks)
-             if checks else math.nan)
+        u = (
+            sum(richardson_factor(pt, c) * abs(pt["residual"] - c["residual"]) for c in checks)
+            if checks
+            else math.nan
+        )
         holds, inconc = C.judge("within", rec, (lo, hi), u)
         result.claims.append(
             C.Claim(
@@ -654,7 +685,7 @@ def _coated(result: C.StudyResult, done: dict) -> None:
         s = done.get(p["id"])
         if s is None:
             continue
-        c = s["curves"]
+        c = (done.get(p["id"] + "/onset-path") or s)["curves"]
         load = [i for i, ph in enumerate(c["phase"]) if ph == "loading"]
         first = next((i for i in load if c["ep_max"][i] > 0), None)
         W_el = c["W"][first - 1] if first else math.nan
@@ -709,9 +740,11 @@ def _coated(result: C.StudyResult, done: dict) -> None:
 def _coated_detail(row: dict, lo: float, hi: float) -> str:
     vm_c = finite(row["residual_vm_interface_coating"]) / 1e6
     vm_s = finite(row["residual_vm_interface_substrate"]) / 1e6
-    return (f"bracket [{lo:.4g}, {hi:.4g}] W_ys; plastic zone depth {row['zone_depth_over_h']:.3g} h, "
-            f"top {row['zone_top_over_h']:.3g} h; residual von Mises at the interface {vm_c:.4g} / "
-            f"{vm_s:.4g} MPa (coating / substrate side)")
+    return (
+        f"bracket [{lo:.4g}, {hi:.4g}] W_ys; plastic zone depth {row['zone_depth_over_h']:.3g} h, "
+        f"top {row['zone_top_over_h']:.3g} h; residual von Mises at the interface {vm_c:.4g} / "
+        f"{vm_s:.4g} MPa (coating / substrate side)"
+    )
 
 
 def _convergence(result: C.StudyResult, plan: list[dict], pts: dict) -> None:

@@ -19,8 +19,8 @@ def test_indentation_protocol():
     S = get_study("indentation")
     n = {res: len(S.cases(res)) for res in C.RESOLUTIONS}
     # tiny/quick: a path and its check, the exact onset and its check; full: 3 x 3 paths, 5
-    # convergence paths, 3 coated paths and their elastic onsets, 6 onsets and their checks
-    assert n == {"tiny": 4, "quick": 4, "full": 9 + 5 + 3 + 3 + 12}, n
+    # convergence paths, 3 coated paths with their onset paths and elastic onsets, 6 onsets and their checks
+    assert n == {"tiny": 4, "quick": 4, "full": 9 + 5 + 3 * 3 + 12}, n
     assert {sc.tier for sc in S.cases("full")} == {"none"}
     W, a, z = S.onset_closed_form(1e9)
     p0y, zy = hertz_axis_onset(0.3)
