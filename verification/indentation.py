@@ -304,9 +304,11 @@ def jobs(resolution: str) -> list:
 
 
 def cases(resolution: str) -> list[C.StudyCase]:
-    """One case per stored computation; no registered method runs them (``tier = none``): the
-    study solves them itself in :func:`analyse`."""
-    return [C.StudyCase(j.id, j.case, {"method": j.method}, tier="none") for j in jobs(resolution)]
+    """None: no registered method solves an elastic-plastic path (the elastic methods would solve
+    the elastic contact, another problem), so the study's computations are its own
+    (:func:`jobs`, run and stored by :func:`analyse`)."""
+    C.check_resolution(resolution)
+    return []
 
 
 # -- analysis --------------------------------------------------------------------------------

@@ -14,14 +14,15 @@ from coathertz.verification import get_study
 
 
 def test_indentation_protocol():
-    """Cases per resolution (one per stored computation, solved by the study itself) and the
-    closed-form onset of the exact coated check."""
+    """Stored computations per resolution (solved by the study itself) and the closed-form onset
+    of the exact coated check."""
     S = get_study("indentation")
-    n = {res: len(S.cases(res)) for res in C.RESOLUTIONS}
+    n = {res: len(S.jobs(res)) for res in C.RESOLUTIONS}
     # tiny/quick: a path and its check, the exact onset and its check; full: 3 x 3 paths, 5
-    # convergence paths, 3 coated paths with their onset paths and elastic onsets, 6 onsets and their checks
+    # convergence paths, 3 coated paths with their onset paths and elastic onsets, 6 onsets and
+    # their checks; no registered method runs them (no cases)
     assert n == {"tiny": 4, "quick": 4, "full": 9 + 5 + 3 * 3 + 12}, n
-    assert {sc.tier for sc in S.cases("full")} == {"none"}
+    assert all(S.cases(res) == [] for res in C.RESOLUTIONS)
     W, a, z = S.onset_closed_form(1e9)
     p0y, zy = hertz_axis_onset(0.3)
     assert p0y == pytest.approx(1.61, abs=0.005) and zy == pytest.approx(0.48, abs=0.005)  # Johnson 6.2
