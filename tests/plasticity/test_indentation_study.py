@@ -101,7 +101,7 @@ def test_bad_settings_one_line():
 
 @pytest.mark.slow
 def test_indentation_study_tiny(tmp_path):
-    """~4 s CPU: E/Y = 1000 to delta/delta_c = 6 (n_a = 6, 3 targets; check n_a = 4, 5 targets)
+    """~3 s CPU: E/Y = 1000 to delta/delta_c = 6 (n_a = 6, 3 targets; check n_a = 4, 5 targets)
     and the exact coated onset. Measured: P/Pc = 12.70 at delta/delta_c = 6 (Kogut & Etsion
     13.23, -4.1 %; Jackson & Green 13.00, -2.3 %; uncertainty 2.9 %), a/ac = 2.68 (within 1 %
     of both, uncertainty ~30 %: inconclusive), elastic recovery 4.36 delta_c in the bounds
