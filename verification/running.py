@@ -199,6 +199,9 @@ def run_study(module, resolution: str, methods: Mapping[str, Any], store: Result
     result.extra["cases"] = {sc.id: {"params": dict(sc.params), "case_key": case_key(sc.case),
                                      "describe": sc.case.describe(), "tier": sc.tier} for sc in cases}
     result.workers = 1 if opts.get("scheduler") else max(1, int(opts.get("workers", 1)))
+    # the run's store, for studies that solve in ``analyse`` and store their own results (not a
+    # dataclass field: it stays out of ``to_json``)
+    result.store = store  # type: ignore[attr-defined]
     module.analyse(result)
     result.wall_time = time.perf_counter() - t0
     return result

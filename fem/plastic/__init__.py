@@ -23,6 +23,12 @@ Modules, one job each:
     Load-approach and plastic-zone figures.
 :mod:`~coathertz.fem.plastic.onset`
     First yield from the elastic solution (load, location, region).
+:mod:`~coathertz.fem.plastic.stored`
+    Load paths and onset searches through the result store (keyed like every other result,
+    resumable: an interrupted study recomputes only what had not finished).
+:mod:`~coathertz.fem.plastic.published`
+    Published fits of elastic-plastic spherical contact (Kogut & Etsion 2002, Jackson & Green
+    2005), the reference of the ``indentation`` study.
 :mod:`~coathertz.fem.plastic.hollow_sphere`
     Hill's pressurised hollow sphere: a verification problem with a closed form, for the return
     mapping and the B-bar assembly (``tests/plasticity/test_hill_sphere.py``).

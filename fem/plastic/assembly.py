@@ -20,7 +20,14 @@ tangent is consistent. ``bbar=False`` gives the plain displacement form (for com
 locking test, ``tests/plasticity/test_hill_sphere.py``).
 
 Arrays: ``B[4, 18, nel, nq]`` (strain of each local shape function), element dofs
-``[18, nel]`` from scikit-fem's vector Q2 basis; assembly by ``coo -> csr``.
+``[18, nel]`` from scikit-fem's vector Q2 basis. The tangent's sparsity is fixed, so each
+element entry's place in the CSR data is found once and every assembly is one ``bincount``;
+elements whose tangent is elastic at every quadrature point keep their elastic stiffness
+(computed once per region; the comparison with the elastic tangent is exact, since the return
+mapping leaves elastic points' tangent untouched); each region's strain operator is sliced
+once. Measured on the quick ``indentation`` path (513 elements, 31 factorisations): 1.4-1.7 s
+CPU against 2.6-2.9 s before, the README's approach path with unloading (default mesh, 95
+factorisations) 42 s against 52 s; the same numbers to 1e-14.
 """
 
 from __future__ import annotations
@@ -76,6 +83,17 @@ class BBarAssembler:
         nl = nloc
         self._rows = np.broadcast_to(self.edofs[:, None, :], (nl, nl, self.edofs.shape[1])).transpose(2, 0, 1)
         self._cols = np.broadcast_to(self.edofs[None, :, :], (nl, nl, self.edofs.shape[1])).transpose(2, 0, 1)
+        # the tangent's sparsity is fixed: each element entry's place in the CSR data, once
+        rows = np.concatenate([self._rows[els].ravel() for els, _ in regions])
+        cols = np.concatenate([self._cols[els].ravel() for els, _ in regions])
+        keys, self._slot = np.unique(rows.astype(np.int64) * self.n + cols, return_inverse=True)
+        self._indices = (keys % self.n).astype(np.int32)
+        self._indptr = np.r_[0, np.cumsum(np.bincount(keys // self.n, minlength=self.n))].astype(np.int32)
+        self._elastic_Ke: dict[int, tuple[np.ndarray, np.ndarray]] = {}  # region -> (D_el, Ke_el)
+        # each region's strain operator, weights and dofs, sliced once (not copied at every call)
+        self._Bq = [np.ascontiguousarray(B[:, :, els]) for els, _ in regions]
+        self._wq = [self.w[els] for els, _ in regions]
+        self._eq = [self.edofs[:, els] for els, _ in regions]
 
     # -- quadrature-point fields ----------------------------------------------------------------
     def strain(self, u: np.ndarray, elements: np.ndarray) -> np.ndarray:
@@ -90,23 +108,45 @@ class BBarAssembler:
         """
         F = np.zeros(self.n)
         Ke_all, sigmas, new_states = [], [], []
-        for (els, law), st in zip(self.regions, states, strict=True):
-            eps = self.strain(u, els)
+        for k, ((els, law), st) in enumerate(zip(self.regions, states, strict=True)):
+            Bq, w, ed = self._Bq[k], self._wq[k], self._eq[k]
+            eps = np.einsum("iaeq,ae->ieq", Bq, u[ed])
             sig, D, st_new = law.stress(eps, st)
-            Bq = self.B[:, :, els]
-            w = self.w[els]
             fe = np.einsum("iaeq,ieq,eq->ae", Bq, sig, w)
-            np.add.at(F, self.edofs[:, els], fe)
+            np.add.at(F, ed, fe)
             if tangent:
                 D = np.broadcast_to(D, (4, 4, *eps.shape[1:]))
-                DB = np.einsum("ijeq,jbeq->ibeq", D, Bq)
-                Ke_all.append((els, np.einsum("iaeq,ibeq,eq->eab", Bq, DB, w, optimize=True)))
+                D_el, Ke = self._elastic(k, els, law)
+                # elements whose tangent is the elastic one at every point keep their elastic
+                # stiffness (the same numbers); the others are integrated again
+                changed = np.nonzero(np.any(D != D_el[:, :, None, None], axis=(0, 1, 3)))[0]
+                if changed.size:
+                    Ke = Ke.copy()
+                    Ke[changed] = self._element_stiffness(els[changed], D[:, :, changed], Bq[:, :, changed])
+                Ke_all.append(Ke)
             sigmas.append(sig)
             new_states.append(st_new)
         K = None
         if tangent:
-            rows = np.concatenate([self._rows[els].ravel() for els, _ in Ke_all])
-            cols = np.concatenate([self._cols[els].ravel() for els, _ in Ke_all])
-            vals = np.concatenate([Ke.ravel() for _, Ke in Ke_all])
-            K = sp.csr_matrix((vals, (rows, cols)), shape=(self.n, self.n))
+            vals = np.concatenate([Ke.ravel() for Ke in Ke_all])
+            data = np.bincount(self._slot, weights=vals, minlength=len(self._indices))
+            K = sp.csr_matrix((data, self._indices, self._indptr), shape=(self.n, self.n))
         return F, K, sigmas, new_states
+
+    def _element_stiffness(self, els: np.ndarray, D: np.ndarray, Bq: np.ndarray | None = None) -> np.ndarray:
+        """``Ke[nel, 18, 18]`` of ``elements`` with the tangent ``D[4, 4, nel, nq]`` (``Bq``: their
+        strain operator, if already sliced)."""
+        Bq = self.B[:, :, els] if Bq is None else Bq
+        DB = np.einsum("ijeq,jbeq->ibeq", D, Bq)
+        return np.einsum("iaeq,ibeq,eq->eab", Bq, DB, self.w[els], optimize=True)
+
+    def _elastic(self, k: int, els: np.ndarray, law) -> tuple[np.ndarray, np.ndarray]:
+        """The elastic tangent of region ``k``'s law (at zero strain, no history) and its element
+        stiffnesses, computed once."""
+        if k not in self._elastic_Ke:
+            D_el = np.array(law.stress(np.zeros((4, 1, 1)), law.initial_state((1, 1))
+                                       if hasattr(law, "initial_state") else {})[1])[:, :, 0, 0]
+            shape = (4, 4, len(els), self.w.shape[1])
+            Ke = self._element_stiffness(els, np.broadcast_to(D_el[:, :, None, None], shape))
+            self._elastic_Ke[k] = (D_el, Ke)
+        return self._elastic_Ke[k]
