@@ -161,7 +161,7 @@ def analyse(result: C.StudyResult) -> None:
                        ("indenter", BOUND_CIRC)):
         for rng, sel in (("paper range", True), ("extended range", None)):
             rs = [r for r in recs if r["config"] == cfg and (sel is None or r["paper_range"])]
-            if not rs:
+            if not rs or (cfg == "indenter" and sel is None):  # the steel ball: the paper's range only
                 continue
             ref = rs[0]["reference"]
             for rule_name in ("refit", "paper"):

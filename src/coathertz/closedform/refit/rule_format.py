@@ -20,7 +20,10 @@ BINS = {
     "rigid": (("log10_H", (-3.0, -2.0, -1.0, 0.0, 1.0)), ("nu_c", (0.0, 0.25, 0.4, 0.45, 0.5))),
     "ellipse": (("log10_H", (-2.0, -1.0, 0.0, math.log10(3.0))),
                 ("log10_E", (math.log10(0.25), 0.0, math.log10(4.0)))),
-    "indenter": (("log10_H", (-3.0, -2.0, -1.0, 0.0, 1.0)), ("log10_E", (-1.0, -0.5, 0.0, 0.5, 1.0))),
+    #: E edges 0.1, 0.32, 1, 2, 4.5, 10: the paper's E <= 4 apart from the stiff coatings where the
+    #: peak pressure leaves the axis (E' = 1 + gamma (E - 1) >~ 3; the largest p0 errors)
+    "indenter": (("log10_H", (-3.0, -2.0, -1.0, 0.0, 1.0)),
+                 ("log10_E", (-1.0, -0.5, 0.0, math.log10(2.0), math.log10(4.5), 1.0))),
 }
 
 
