@@ -6,13 +6,15 @@ Configurations (rigid indenter, :mod:`coathertz.fitalpha.sweep` cases):
   H in [0.01, 3]) and the extended one (E in [1/10, 10], H in [0.001, 10]); nu_c = nu_s = 0.3
   (``full`` adds nu_c = 0.15, 0.45);
 * rigid substrate: H = h/a0c in [0.001, 10], nu_c in [0, 0.5];
-* elliptical: Rx/Ry in {3, 10}, E in [1/4, 4], H in [0.01, 3] (FFT only: not axisymmetric).
+* elliptical: Rx/Ry in {3, 10}, E in [1/4, 4], H in [0.01, 3] (FFT only: not axisymmetric);
+* elastic indenter (config ``indenter``, :mod:`coathertz.closedform.refit.indenter`): a steel
+  ball on coated steel (gamma = E_ref/Ec* = 1/(1 + E)), E in [1/4, 4], H in [0.01, 3].
 
 The error of each rule is ``(predicted - exact)/exact`` in percent, against the highest-ranked
 numerical method that solved the case (the exact axisymmetric method where registered, else
 the FFT, whose contact radius carries ~0.3 % discretisation noise at n = 128).
 
-Claims: refit max |error| <= 0.3 % on delta, a, p0 (circular) and <= 1 % on
+Claims: refit max |error| <= 0.3 % on delta, a, p0 (circular, rigid or elastic indenter) and <= 1 % on
 r_a, r_b, delta, p0 (elliptical). The paper's rule is reported on the same points.
 Resolutions: ``tiny`` a handful of cases, ``quick`` ~60 (CI), ``full`` ~700.
 """
@@ -31,8 +33,9 @@ from coathertz.fitalpha.sweep import Point, make_case
 
 NAME = "refit"
 TITLE = "Refitted alpha vs the paper's rule, against the exact method"
-CLAIM = ("The refitted rule predicts delta, a, p0 within 0.3 % (circular) and r_a, r_b, delta, p0 "
-         "within 1 % (elliptical) over E in [1/10, 10], H in [0.001, 10].")
+CLAIM = ("The refitted rule predicts delta, a, p0 within 0.3 % (circular, rigid indenter over E in "
+         "[1/10, 10], H in [0.001, 10]; a steel ball over E in [1/4, 4], H in [0.01, 3]) and r_a, r_b, "
+         "delta, p0 within 1 % (elliptical).")
 QUANTITIES = ("a", "p", "delta")
 BOUND_CIRC = 0.3
 BOUND_ELL = 1.0
@@ -46,13 +49,15 @@ def grid(resolution: str) -> dict:
     if resolution == "full":
         return {"E": np.geomspace(0.1, 10, 9), "H": C.h_grid(0.001, 10, 25), "nu": (0.15, 0.3, 0.45),
                 "rigid_H": C.h_grid(0.001, 10, 25), "rigid_nu": (0.0, 0.3, 0.45, 0.5),
-                "ell_E": (0.25, 0.8, 1.25, 4.0), "ell_H": C.h_grid(0.01, 3, 8), "rho": (3.0, 10.0)}
+                "ell_E": (0.25, 0.8, 1.25, 4.0), "ell_H": C.h_grid(0.01, 3, 8), "rho": (3.0, 10.0),
+                "ind_E": (0.25, 0.5, 2.0, 4.0), "ind_H": C.h_grid(0.01, 3, 8)}
     if resolution == "quick":  # thin elastic coatings cost the exact method ~1 min: quick starts at 0.01
         return {"E": (0.1, 0.25, 3.0, 10.0), "H": C.h_grid(0.01, 10, 6), "nu": (0.3,),
                 "rigid_H": C.h_grid(0.003, 10, 5), "rigid_nu": (0.3, 0.5),
-                "ell_E": (0.25, 4.0), "ell_H": (0.1, 0.7), "rho": (10.0,)}
+                "ell_E": (0.25, 4.0), "ell_H": (0.1, 0.7), "rho": (10.0,),
+                "ind_E": (0.25, 4.0), "ind_H": (0.03, 0.3, 1.0)}
     return {"E": (0.25, 4.0), "H": (0.1, 1.0), "nu": (0.3,), "rigid_H": (0.3,), "rigid_nu": (0.3,),
-            "ell_E": (4.0,), "ell_H": (0.7,), "rho": (3.0,)}
+            "ell_E": (4.0,), "ell_H": (0.7,), "rho": (3.0,), "ind_E": (), "ind_H": ()}
 
 
 def points(resolution: str) -> list[Point]:
@@ -61,17 +66,21 @@ def points(resolution: str) -> list[Point]:
     pts += [Point("rigid", 1.0, float(H), nu) for nu in g["rigid_nu"] for H in g["rigid_H"]]
     pts += [Point("ellipse", float(E), float(H), rho=r) for r in g["rho"] for E in g["ell_E"]
             for H in g["ell_H"]]
+    # a steel ball on coated steel: Ei* = Es*, so gamma = E_ref/Ec* = 1/(1 + E)
+    pts += [Point("indenter", float(E), float(H), 0.3, 0.3, gamma=round(1.0 / (1.0 + E), 12))
+            for E in g["ind_E"] for H in g["ind_H"]]
     return pts
 
 
 def _params(p: Point) -> dict:
     paper_range = 0.25 - 1e-9 <= p.E <= 4 + 1e-9 and 0.01 - 1e-9 <= p.H <= 3 + 1e-9
     return {"config": p.config, "E": p.E, "H": p.H, "nu_c": p.nu_c, "nu_s": p.nu_s, "rho": p.rho,
-            "paper_range": bool(paper_range if p.config != "rigid" else 0.01 <= p.H <= 3)}
+            "gamma": p.gamma, "paper_range": bool(paper_range if p.config != "rigid" else 0.01 <= p.H <= 3)}
 
 
 def _cid(p: Point) -> str:
-    return f"{p.config}:E={p.E:.4g},H={p.H:.4g},nu_c={p.nu_c:g},nu_s={p.nu_s:g},rho={p.rho:g}"
+    tail = f",gamma={p.gamma:.4g}" if p.config == "indenter" else ""
+    return f"{p.config}:E={p.E:.4g},H={p.H:.4g},nu_c={p.nu_c:g},nu_s={p.nu_s:g},rho={p.rho:g}{tail}"
 
 
 def _spot_checked(pts: list[Point]) -> set[Point]:
@@ -111,7 +120,8 @@ def analyse(result: C.StudyResult) -> None:
         if ref is None or C.CLOSED not in ms:
             continue
         row = ms[ref]
-        p = Point(row["config"], row["E"], row["H"], row["nu_c"], row["nu_s"], row["rho"])
+        p = Point(row["config"], row["E"], row["H"], row["nu_c"], row["nu_s"], row["rho"],
+                  gamma=row.get("gamma", 1.0))
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             pred, _ = refit_predict(make_case(p), rule, warn=False)
@@ -120,13 +130,14 @@ def analyse(result: C.StudyResult) -> None:
             f = FIELDS[q]
             exact = row[f]
             recs.append({"case": cid, "config": p.config, "E": p.E, "H": p.H, "nu_c": p.nu_c,
-                         "rho": p.rho, "paper_range": row["paper_range"], "quantity": q, "reference": ref,
+                         "rho": p.rho, "gamma": p.gamma, "paper_range": row["paper_range"], "quantity": q,
+                         "reference": ref,
                          "paper": 100.0 * (ms[C.CLOSED][f] / exact - 1.0),
                          "refit": 100.0 * (getattr(pred, f) / exact - 1.0)})
     result.extra["refit_errors"] = recs
     # spot checks of the reference by the other numerical methods on the same circular cases
     others = sorted({m for ms in by_case.values() for m in ms} - {C.CLOSED})
-    for cfg in ("elastic", "rigid"):
+    for cfg in ("elastic", "rigid", "indenter"):
         for m in others:
             d = {q: [] for q in QUANTITIES}
             refs = set()
@@ -146,10 +157,11 @@ def analyse(result: C.StudyResult) -> None:
                     f"{len(d['a'])} cases; " + ", ".join(f"{q} {x:.3g} %" for q, x in v.items())))
     result.extra["data_file"] = {k: rule.data["provenance"].get(k) for k in
                                  ("code_version", "circular_method", "sweep_sha256", "created_utc")}
-    for cfg, bound in (("elastic", BOUND_CIRC), ("rigid", BOUND_CIRC), ("ellipse", BOUND_ELL)):
+    for cfg, bound in (("elastic", BOUND_CIRC), ("rigid", BOUND_CIRC), ("ellipse", BOUND_ELL),
+                       ("indenter", BOUND_CIRC)):
         for rng, sel in (("paper range", True), ("extended range", None)):
             rs = [r for r in recs if r["config"] == cfg and (sel is None or r["paper_range"])]
-            if not rs:
+            if not rs or (cfg == "indenter" and sel is None):  # the steel ball: the paper's range only
                 continue
             ref = rs[0]["reference"]
             for rule_name in ("refit", "paper"):
@@ -179,26 +191,32 @@ def plot(result: C.StudyResult, outdir) -> list:
     el = [r for r in recs if r["config"] == "elastic" and math.isclose(r["nu_c"], 0.3)]
     if el:
         paths += _elastic_error_maps(el, outdir, result.uncertainty)
-    other = [r for r in recs if r["config"] in ("rigid", "ellipse")]
+    panels = tuple(c for c in ("rigid", "ellipse", "indenter") if any(r["config"] == c for r in recs))
+    other = [r for r in recs if r["config"] in panels]
     if other:
-        fig, axes = C.figure(2, 1, width=5.0, height=3.6)
-        for j, cfg in enumerate(("rigid", "ellipse")):
+        fig, axes = C.figure(len(panels), 1, width=5.0, height=3.6)
+        for j, cfg in enumerate(panels):
             ax = axes[0, j]
             for rule_name, mk in (("paper", "x"), ("refit", "o")):
                 rs = [r for r in other if r["config"] == cfg]
                 if rs:
                     ax.plot([r["H"] for r in rs], [max(abs(r[rule_name]), FLOOR) for r in rs], mk, ms=4,
                             label=rule_name)
-            ax.axhline(BOUND_CIRC if cfg == "rigid" else BOUND_ELL, color="k", lw=0.8, ls="--")
+            ax.axhline(BOUND_ELL if cfg == "ellipse" else BOUND_CIRC, color="k", lw=0.8, ls="--")
             ax.set_xscale("log")
             ax.set_yscale("log")
             ax.set_xlabel("H")
             ax.set_ylabel(f"|error| [%] (floored at {FLOOR:g} %)")
-            ax.set_title(f"{cfg}: all quantities", fontsize=9)
+            ax.set_title(PANEL_TITLES[cfg], fontsize=9)
             ax.legend(fontsize=7)
         fig.set_layout_engine("tight")  # laid out when drawn, in the render process
         paths += C.save(fig, outdir, "refit_rigid_ellipse")
     return paths
+
+
+#: Titles of the ``refit_rigid_ellipse`` panels (error of both rules against the study's reference).
+PANEL_TITLES = {"rigid": "rigid substrate: a, delta, p0", "ellipse": "ellipse: r_a, r_b, delta, p0",
+                "indenter": "steel ball on coated steel: a, delta, p0"}
 
 
 #: How the refit figure names each rule (rows of ``refit_elastic``).

@@ -48,6 +48,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="rigid validation points (Sobol, uniform in nu_c)")
     parser.add_argument("--valid-rigid-spread", type=int, default=200,
                         help="further rigid validation points uniform in t(nu_c) (dense towards nu_c = 0.5)")
+    parser.add_argument("--indenter-grid", default="33,11,9,9",
+                        help="elastic-indenter training grid: Chebyshev-Lobatto nodes in log10 H, log10 E, "
+                             "Dundurs' s and gamma = E_ref/Ec* (the ends of gamma left out; "
+                             "default 33,11,9,9)")
+    parser.add_argument("--valid-indenter", type=int, default=700,
+                        help="elastic-indenter validation points (Sobol in log10 H, log10 E, nu_c, nu_s, "
+                             "gamma)")
     parser.add_argument("--train-ellipse", type=int, default=250, help="ellipse training points (+3^d box)")
     parser.add_argument("--valid-ellipse", type=int, default=120, help="ellipse validation points")
     parser.add_argument("--fallback-settings", default='{"rtol": 1e-10}',
@@ -57,8 +64,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--reuse-sweep", action="append", default=[], metavar="FILE:CONFIG[,CONFIG]",
                         help="take the rows of these configurations from an exported sweep instead of "
                              "solving (e.g. runs/refit/fft128_sweep.json:ellipse)")
-    parser.add_argument("--configs", default="elastic,rigid,ellipse",
-                        help="configurations to solve (default elastic,rigid,ellipse)")
+    parser.add_argument("--configs", default="elastic,rigid,ellipse,indenter",
+                        help="configurations to solve (default elastic,rigid,ellipse,indenter)")
     parser.add_argument("--workers", type=int, default=1, help="worker processes for the solvers")
     parser.add_argument("--export-sweep", type=Path, help="write the sweep (JSON) here")
     parser.add_argument("--out", type=Path, help="write the data file here (default: print the summary only)")
@@ -161,13 +168,16 @@ def solve_sweep(args) -> tuple[dict, dict]:
                            "method": prov.get("ellipse_method" if cfg == "ellipse" else "circular_method"),
                            "code_version": prov.get("code_version")}
     wanted = set(args.configs.split(","))
-    plan = [(c, m) for c, m in (("elastic", circ), ("rigid", circ), ("ellipse", ell))
+    plan = [(c, m) for c, m in (("elastic", circ), ("rigid", circ), ("indenter", circ), ("ellipse", ell))
             if c not in reused and c in wanted]
     for cfg, m in plan:
         if cfg == "elastic":
             eshape = _grid(args.elastic_grid, 3, "--elastic-grid")
             pts = (S.design_grid_elastic(eshape) + S.design_random("elastic", args.valid_elastic, 2)  # type: ignore[arg-type]
                    + S.design_random_ring(args.valid_ring) + S.design_grid_patch() + S.design_grid_ring())
+        elif cfg == "indenter":
+            ishape = _grid(args.indenter_grid, 4, "--indenter-grid")
+            pts = S.design_grid_indenter(ishape) + S.design_random_indenter(args.valid_indenter)  # type: ignore[arg-type]
         elif cfg == "rigid":
             rshape = _grid(args.rigid_grid, 2, "--rigid-grid")
             pts = (S.design_grid_rigid(rshape) + S.design_random("rigid", args.valid_rigid, 2)  # type: ignore[arg-type]
@@ -250,6 +260,14 @@ def compare(new: dict, old: dict) -> float:
                 return float("inf")
             c1, c2 = np.asarray(sd["coef"]), np.asarray(od["coef"])
             worst = max(worst, float(np.max(np.abs(c1 - c2)) / max(np.max(np.abs(c2)), 1e-300)))
+    for q, c in new.get("indenter", {}).get("coef", {}).items():  # the elastic-indenter form
+        oc = old.get("indenter", {}).get("coef", {}).get(q)
+        if oc is None or len(oc) != len(c) or old["indenter"]["degrees"] != new["indenter"]["degrees"]:
+            return float("inf")
+        c1, c2 = np.asarray(c), np.asarray(oc)
+        worst = max(worst, float(np.max(np.abs(c1 - c2)) / max(np.max(np.abs(c2)), 1e-300)))
+    if "indenter" in old and "indenter" not in new:
+        return float("inf")
     return worst
 
 

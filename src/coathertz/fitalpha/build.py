@@ -42,6 +42,7 @@ DEFAULT_SETTINGS = {
     "corrected_elastic_patch": FitSettings((40, 8, 8)),
     "corrected_elastic_ring": FitSettings((20, 10, 10)),
     "corrected_rigid": FitSettings((24, 16), (), ridge=1e-12, reweight=0),  # full tensor
+    "indenter": FitSettings((20, 6, 3, 6), (), ridge=1e-12, reweight=0),  # full tensor
 }
 
 def _bins(config: str, cols, errs: Mapping[str, np.ndarray]) -> dict:
@@ -247,6 +248,10 @@ def build(table: Mapping, *, settings: Mapping[str, FitSettings] | None = None,
                     **{q: error_stats(e[near]) for q, e in errs.items()}}
         out["corrected"][config] = corr
         out["best_form"][config] = best
+    tr, va = select(table, config="indenter", set="train"), select(table, config="indenter", set="valid")
+    if len(tr["H"]) and "elastic" in circular:
+        _build_indenter(out, circular["elastic"], tr, va, settings["indenter"],
+                        out["best_form"]["elastic"] == "corrected")
     tr, va = select(table, config="ellipse", set="train"), select(table, config="ellipse", set="valid")
     if len(tr["H"]) and "elastic" in circular:
         model, form = circular["elastic"]  # type: ignore[misc]
@@ -281,8 +286,40 @@ def build(table: Mapping, *, settings: Mapping[str, FitSettings] | None = None,
     out["provenance"]["fit_seconds"] = round(time.perf_counter() - t0, 2)
     out["provenance"]["counts"] = {
         c: {w: len(select(table, config=c, set=w)["H"]) for w in ("train", "valid")}
-        for c in ("elastic", "rigid", "ellipse")}
+        for c in ("elastic", "rigid", "ellipse", "indenter")}
     return out
+
+
+def rigid_bars_function(model: M.AlphaModel, form: CF.CorrectedForm, corrected: bool):
+    """``(E, H, nu_c, nu_s) -> bars`` of the rigid indenter's elastic-substrate form the predictor
+    uses (the base of the elastic-indenter form)."""
+    if not corrected:
+        return model.bars
+
+    def bars(E, H, nu_c, nu_s):
+        return {q: np.exp(v) for q, v in form.log_bars(E, H, nu_c, nu_s, model).items()}
+
+    return bars
+
+
+def _build_indenter(out: dict, circular, tr, va, s: FitSettings, corrected: bool) -> None:
+    """Fit, validate and bin the elastic-indenter form (:mod:`coathertz.closedform.refit.indenter`)."""
+    from coathertz.fitalpha import indenter as FI
+
+    model, form = circular
+    rigid = rigid_bars_function(model, form, corrected)
+    ind = FI.fit_indenter_form(tr, rigid, s)
+    out["indenter"] = ind.to_dict()
+    out["settings"]["indenter"] = s.to_dict()
+    out["fit_error"]["indenter"] = {q: error_stats(e) for q, e in FI.errors(ind, rigid, tr).items()}
+    out["ranges"]["indenter"] = {**_ranges("elastic", {k: np.concatenate([tr[k], va[k]]) for k in tr}),
+                                 "gamma": [float(min(np.min(tr["gamma"]), np.min(va["gamma"], initial=1.0))),
+                                           1.0]}
+    out["best_form"]["indenter"] = "indenter"
+    if len(va["H"]):
+        errs = FI.errors(ind, rigid, va)
+        out["validation_error"]["indenter"] = {q: error_stats(e) for q, e in errs.items()}
+        out["bounds"]["indenter"] = _bins("indenter", va, errs)
 
 
 def _ranges(config: str, cols) -> dict:
@@ -290,7 +327,7 @@ def _ranges(config: str, cols) -> dict:
     if config != "rigid":
         r["E"] = [float(np.min(cols["E"])), float(np.max(cols["E"]))]
     r["nu_c"] = [float(np.min(cols["nu_c"])), float(np.max(cols["nu_c"]))]
-    if config == "elastic":
+    if config in ("elastic", "ellipse"):  # the ellipse correction was fitted at nu_c = nu_s = 0.3 only
         r["nu_s"] = [float(np.min(cols["nu_s"])), float(np.max(cols["nu_s"]))]
     if config == "ellipse":
         r["rho"] = [float(np.min(cols["rho"])), float(np.max(cols["rho"]))]

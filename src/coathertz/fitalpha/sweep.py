@@ -2,9 +2,11 @@
 
 A sweep is a table (dict of equal-length columns) of
 
-* inputs: ``config`` (``elastic``, ``rigid``, ``ellipse``), ``E``, ``H``, ``nu_c``, ``nu_s``,
-  ``rho`` (= Rx/Ry, 1 for circles), ``set`` (``train`` or ``valid``);
-* outputs: the bars of eq (7) ``a_bar, delta_bar, p_bar`` (and ``r_a_bar, r_b_bar``),
+* inputs: ``config`` (``elastic``, ``rigid``, ``ellipse``, ``indenter``: an elastic ball), ``E``,
+  ``H``, ``nu_c``, ``nu_s``, ``rho`` (= Rx/Ry, 1 for circles), ``gamma`` (the elastic indenter's
+  ``E_ref/Ec*``, 1 for a rigid one), ``set`` (``train`` or ``valid``);
+* outputs: the bars of eq (7) ``a_bar, delta_bar, p_bar`` (and ``r_a_bar, r_b_bar``; NaN in
+  the circular ``indenter`` rows, where they equal ``a_bar``),
   ``r_p0_bar`` (radius of the maximum pressure over the contact radius, where the method
   reports it; NaN otherwise), and where computed (:func:`axis_and_ring`) ``p_axis_bar`` (the
   pressure on the axis) and ``p_ring_bar`` (the largest pressure on 0.2 a <= r <= a).
@@ -39,6 +41,9 @@ from coathertz.materials import RIGID, Body, Coating, Material
 R_SPHERE = 10e-3  # [m]
 W_LOAD = 1.0  # [N]
 E_SUBSTRATE = 200e9  # [Pa]
+#: Poisson's ratio of the elastic indenter of the ``indenter`` sweep (frictionless contact: only
+#: its plane-strain modulus enters the normal problem).
+NU_INDENTER = 0.3
 W_ELLIPSE = 400.0  # [N] (Section 5)
 RY_ELLIPSE = 3e-3  # [m] (Section 5), Rx = rho * Ry
 
@@ -59,7 +64,7 @@ THIN = {
     "elastic": {**BOX["elastic"], "log10_H": (-3.0, -2.0)},
 }
 OUTPUTS = ("a_bar", "delta_bar", "p_bar", "r_a_bar", "r_b_bar", "r_p0_bar", "p_axis_bar", "p_ring_bar")
-INPUTS = ("config", "set", "E", "H", "nu_c", "nu_s", "rho")
+INPUTS = ("config", "set", "E", "H", "nu_c", "nu_s", "rho", "gamma")
 
 
 @dataclass(frozen=True)
@@ -73,6 +78,9 @@ class Point:
     nu_s: float = 0.3
     rho: float = 1.0
     set: str = "train"
+    #: The elastic indenter's share of the thick-coating compliance, ``gamma = E_ref/Ec*``
+    #: (:mod:`coathertz.closedform.refit.indenter`); 1 for a rigid indenter.
+    gamma: float = 1.0
 
     def case(self) -> ContactCase:
         return make_case(self)
@@ -94,6 +102,13 @@ def make_case(p: Point) -> ContactCase:
     if p.config == "elastic":
         a0s = float(hertz_circular(W_LOAD, R_SPHERE, sub.E_star).a0)
         return ContactCase.sphere_on_coated_half_space(R_SPHERE, W_LOAD, coat, p.H * a0s, sub)
+    if p.config == "indenter":
+        if not 0.0 < p.gamma < 1.0:
+            raise CoatHertzError(f"indenter sweep point: gamma must lie in (0, 1), got {p.gamma!r}")
+        Ei_star = p.gamma * coat.E_star / (1.0 - p.gamma)  # gamma = E_ref/Ec*, 1/E_ref = 1/Ec* + 1/Ei*
+        ind = Material(Ei_star * (1.0 - NU_INDENTER**2), NU_INDENTER)
+        a0s = float(hertz_circular(W_LOAD, R_SPHERE, 1.0 / (1.0 / Ei_star + 1.0 / sub.E_star)).a0)
+        return ContactCase.sphere_on_coated_half_space(R_SPHERE, W_LOAD, coat, p.H * a0s, sub, indenter=ind)
     if p.config == "ellipse":
         ind = Body(RIGID, None, p.rho * RY_ELLIPSE, RY_ELLIPSE, name="rigid ellipsoid")
         base = ContactCase(ind, Body.half_space(sub, Coating(coat, 0.0)), W_ELLIPSE)
@@ -170,6 +185,8 @@ def collect(points: Sequence[Point], method, store, *, workers: int = 1, progres
         for k in INPUTS:
             table[k].append(getattr(p, k))
         b = bars_of(p, c, sr.result)
+        if p.config == "indenter":  # circular: r_a = r_b = a; not stored (keeps the shipped sweep small)
+            b = {**b, "r_a_bar": math.nan, "r_b_bar": math.nan}
         for k in OUTPUTS:
             table[k].append(float(b.get(k, math.nan)))
     table["failed"] = [{"point": p.__dict__, "error": e} for p, e in failed]  # type: ignore[assignment]
@@ -425,3 +442,43 @@ def design_faces_ellipse(n_H: int = 13, n_other: int = 9, n_valid: int = 40) -> 
                 pts.append(Point("ellipse", round(float(E), 10), round(float(H), 10), 0.3, 0.3,
                                  round(float(rho), 10), which))
     return pts
+
+
+#: Box of the elastic-indenter sweep (config ``indenter``): the elastic box plus the indenter's
+#: share ``gamma`` of the thick-coating compliance (:mod:`coathertz.closedform.refit.indenter`).
+INDENTER_BOX = {**REDUCED_BOX, "gamma": (0.0, 1.0)}
+
+
+def design_grid_indenter(shape: tuple[int, int, int, int] = (33, 11, 9, 9),
+                         which: str = "train") -> list[Point]:
+    """Tensor Chebyshev--Lobatto grid of the elastic indenter in ``(log10 H, log10 E, s, gamma)``
+    over :data:`INDENTER_BOX`; the ends gamma = 0 (Hertz) and 1 (the rigid indenter, the
+    ``elastic`` rows) are left out, where the correction vanishes."""
+    from coathertz.closedform.refit.reduced import poisson_of
+
+    box = INDENTER_BOX
+    gs = lobatto(shape[3], *box["gamma"])[1:-1]
+    pts = []
+    for x in lobatto(shape[1], *box["log10_E"]):
+        E = round(10.0 ** float(x), 12)
+        for s in lobatto(shape[2], *box["s"]):
+            nu_c, nu_s = poisson_of(E, float(s))
+            for g in gs:
+                pts += [Point("indenter", E, round(10.0 ** float(h), 12), nu_c, nu_s, 1.0, which,
+                              round(float(g), 12)) for h in lobatto(shape[0], *box["log10_H"])]
+    return pts
+
+
+def design_random_indenter(n: int, seed: int = 5, which: str = "valid") -> list[Point]:
+    """``n`` scrambled-Sobol validation points of the elastic indenter: log10 H, log10 E over
+    :data:`INDENTER_BOX`, nu_c, nu_s in [0, 1/2], gamma in [0.02, 0.98]."""
+    box = {"log10_H": INDENTER_BOX["log10_H"], "log10_E": INDENTER_BOX["log10_E"], "nu_c": (0.0, 0.5),
+           "nu_s": (0.0, 0.5), "gamma": (0.02, 0.98)}
+    u = _unit_points(len(box), n, seed, corners=False)
+    pts = []
+    for row in u:
+        v = {k: lo + r * (hi - lo) for (k, (lo, hi)), r in zip(box.items(), row, strict=True)}
+        pts.append(Point("indenter", round(10 ** v["log10_E"], 10), round(10 ** v["log10_H"], 10),
+                         round(v["nu_c"], 10), round(v["nu_s"], 10), 1.0, which, round(v["gamma"], 10)))
+    return pts
+

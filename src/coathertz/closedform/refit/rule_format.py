@@ -20,14 +20,19 @@ BINS = {
     "rigid": (("log10_H", (-3.0, -2.0, -1.0, 0.0, 1.0)), ("nu_c", (0.0, 0.25, 0.4, 0.45, 0.5))),
     "ellipse": (("log10_H", (-2.0, -1.0, 0.0, math.log10(3.0))),
                 ("log10_E", (math.log10(0.25), 0.0, math.log10(4.0)))),
+    #: E edges 0.1, 0.32, 1, 2, 4.5, 10: the paper's E <= 4 apart from the stiff coatings where the
+    #: peak pressure leaves the axis (E' = 1 + gamma (E - 1) >~ 3; the largest p0 errors)
+    "indenter": (("log10_H", (-3.0, -2.0, -1.0, 0.0, 1.0)),
+                 ("log10_E", (-1.0, -0.5, 0.0, math.log10(2.0), math.log10(4.5), 1.0))),
 }
 
 
 def bin_coords(config: str, cols: Mapping[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
-    """Values of the two binning variables of ``config`` from columns E, H, nu_c."""
+    """Values of the two binning variables of ``config`` from columns E, H, nu_c, gamma."""
     (v1, _), (v2, _) = BINS[config]
     get = {"log10_H": lambda: np.log10(cols["H"]), "log10_E": lambda: np.log10(cols["E"]),
-           "nu_c": lambda: np.asarray(cols["nu_c"], dtype=float)}
+           "nu_c": lambda: np.asarray(cols["nu_c"], dtype=float),
+           "gamma": lambda: np.asarray(cols["gamma"], dtype=float)}
     return get[v1](), get[v2]()
 
 
