@@ -48,7 +48,7 @@ Uncertainties: every value of a path is also computed on a second discretisation
 ``quick``: a coarser mesh with about twice as many increments; ``full``: the coarse mesh, and
 half the increments on the default mesh); the uncertainty is the Richardson error estimate of
 each check, summed: twice the difference for a mesh check, ``1/(r^p - 1)`` times it for a check
-with ``r`` times the increments, with the order ``p`` = :data:`STEP_ORDER` = 0.3 (the increment
+with ``r`` times the increments, with the order ``p`` = ``STEP_ORDER`` = 0.3 (the increment
 error converges slowly: P at delta/delta_c = 20 rises by 3.6 % from 5 to 80 increments, observed
 orders 0.0-0.7). Onsets: twice the difference to a coarser elastic
 mesh. Mesh and step convergence at :math:`\delta/\delta_c = 20` (``full``): three meshes and three
@@ -74,8 +74,8 @@ Every path and onset search goes through the result store (:mod:`coathertz.fem.p
 an interrupted run recomputes only what had not finished. The solves run in ``analyse`` (forked
 processes when the run has workers), so ``RUN_EARLY``.
 
-Claims on the load and radius are judged at the targets from :data:`X_MIN` on where the contact
-spans at least :data:`N_ACROSS_MIN` elements (the mesh is sized for the deepest target and does
+Claims on the load and radius are judged at the targets from ``X_MIN`` on where the contact
+spans at least ``N_ACROSS_MIN`` elements (the mesh is sized for the deepest target and does
 not follow the contact; the detail says how many targets were left out).
 
 Cost (CPU, measured in one process on the shared 2-core machine under load): ``tiny`` 2.7 s,
@@ -408,7 +408,7 @@ STEP_ORDER = 0.3
 
 def richardson_factor(main: dict, check: dict) -> float:
     """Factor from ``|main - check|`` to the error of ``main``: ``1 / (r^p - 1)`` with ``r`` the
-    ratio of the two paths' increments and ``p`` = :data:`STEP_ORDER` where they differ in the
+    ratio of the two paths' increments and ``p`` = ``STEP_ORDER`` where they differ in the
     increments, else 2 (a mesh check: first order, ratio ~1.5-1.7)."""
     n_m, n_c = len(main["x"]), len(check["x"])
     if n_m == n_c:

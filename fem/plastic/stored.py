@@ -1,12 +1,12 @@
 """Elastic-plastic load paths and onset searches through the result store (resumable runs).
 
 A load path is stored like every other result (:class:`coathertz.store.ResultStore`): under the
-case's key, the method name :data:`PATH_METHOD` (``fem-plastic``), the hash of its path settings
+case's key, the method name ``PATH_METHOD`` (``fem-plastic``), the hash of its path settings
 (:func:`path_settings`: mesh, targets, approach, unloading, tolerance) and the code version. What
 is stored is :func:`summarise`: the per-increment curves, the final depths, plastic zone and
 interface stress extrema, and the equivalent plastic strain over the r-z section near the
 contact (for figures) - JSON, not the model. An elastic onset search
-(:func:`~coathertz.fem.plastic.onset.yield_onset`) is stored under :data:`ONSET_METHOD`
+(:func:`~coathertz.fem.plastic.onset.yield_onset`) is stored under ``ONSET_METHOD``
 (``fem-onset``) with its yield stresses and elastic mesh as settings.
 
 :func:`run_stored` runs a list of jobs: the stored ones are read back, the others are solved
@@ -164,7 +164,7 @@ SOLVERS: dict[str, Callable[[ContactCase, dict], dict]] = {PATH_METHOD: solve_pa
 
 @dataclass(frozen=True)
 class Job:
-    """One stored computation: ``method`` (:data:`PATH_METHOD` or :data:`ONSET_METHOD`) of ``case``."""
+    """One stored computation: ``method`` (``PATH_METHOD`` or ``ONSET_METHOD``) of ``case``."""
 
     id: str
     case: ContactCase

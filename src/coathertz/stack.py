@@ -260,7 +260,7 @@ def half_space_states(k: np.ndarray, mat: Material, G_ref: float) -> np.ndarray:
 def frictionless_span(B: np.ndarray) -> np.ndarray:
     """The subspace above a frictionless interface, as two spanning states (columns of ``B``,
     ``(..., 4, 2)``): the member of ``span(B)`` with ``sigma_xz = 0`` and a free ``u_x`` (the
-    spanning-state form of :func:`_frictionless`, for fields inside the layers)."""
+    spanning-state form of the Plücker ``_frictionless``, for fields inside the layers)."""
     c = np.stack([B[..., 3, 1], -B[..., 3, 0]], axis=-1)  # B c has sigma_xz = 0
     v = np.einsum("...ij,...j->...i", B, c)
     v = v / np.linalg.norm(v, axis=-1, keepdims=True)

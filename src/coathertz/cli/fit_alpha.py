@@ -324,7 +324,7 @@ def summary(data: dict) -> str:
             p = data["paper_error"].get(cfg, {}).get(q, {})
             f = data["fit_error"][cfg][q]
             rows.append([cfg, q, str(v["n"]), f"{f['max']:.3f}", f"{v['max']:.3f}", f"{v['p99']:.3f}",
-                         f"{p.get('max', float('nan')):.2f}", f"{p.get('p99', float('nan')):.2f}"])
+                         *(f"{p[k]:.2f}" if k in p else "" for k in ("max", "p99"))])
     for cfg, v in data.get("corrected", {}).items():
         for q, e in v.get("validation_error", {}).items():
             f = v["fit_error"][q]

@@ -4,7 +4,7 @@ The FFT stresses (:mod:`coathertz.fft.stresses`) need, per wavenumber ``w = |k|`
 ``z``, the plane-strain field along ``k`` under three unit surface loads: a pressure
 ``P cos kx`` (rows ``normal``), a shear ``Q cos kx`` along ``k`` (``tangential``) and a shear
 ``Q cos kx`` normal to ``k`` (``antiplane``), in the conventions of
-:class:`coathertz.fft.stresses.StressRows`.
+:class:`coathertz.fft.stress_rows.StressRows`.
 
 In-plane loads (Airy function, the kernel definition of :mod:`coathertz.stack`)
 --------------------------------------------------------------------------------
@@ -73,6 +73,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from coathertz.errors import CoatHertzError
+from coathertz.fft.stress_rows import StressRows
 from coathertz.materials import Material
 from coathertz.stack import StackLayer, frictionless_span, half_space_states, state_matrix
 
@@ -244,9 +245,8 @@ class StackStressFRF:
         return int(np.sum(self.tops[1:] * (1.0 + 1e-12) < z))
 
     def at(self, w, z: float, coef=None):
-        """Response rows (:class:`~coathertz.fft.stresses.StressRows`) at depth ``z`` [m] per
+        """Response rows (:class:`~coathertz.fft.stress_rows.StressRows`) at depth ``z`` [m] per
         ``w`` (1-D); a depth in a rigid substrate raises."""
-        from coathertz.fft.stresses import StressRows
 
         w = self._w(w)
         if coef is None:

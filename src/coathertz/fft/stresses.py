@@ -114,27 +114,13 @@ from coathertz.errors import CoatHertzError, ModelValidityWarning
 from coathertz.fft.frf import Layer, layer_system
 from coathertz.fft.grid import Grid
 from coathertz.fft.stack_stresses import StackStressFRF
+from coathertz.fft.stress_rows import StressRows
 from coathertz.materials import Body
 from coathertz.results import ContactResult
 
 #: The stress components in the order of a field's component axis (Voigt order).
 COMPONENTS = ("xx", "yy", "zz", "yz", "xz", "xy")
 T_MIN = 1e-6  # smallest w h solved (the 6 x 6 system degenerates at t = 0; w = 0 only)
-
-
-@dataclass(frozen=True)
-class StressRows:
-    """Real response rows at one depth, per wavenumber (see the module docstring).
-
-    ``normal``: ``(kk, pp, zz, kz)`` under ``P cos kx`` (sigma_kz ~ sin kx);
-    ``tangential``: the same rows under ``Q cos kx`` along ``k`` (sigma_kz ~ -cos kx, the others
-    ~ sin kx); ``antiplane``: ``(kp, pz)`` under ``Q cos kx`` normal to ``k``
-    (sigma_pz = pz cos kx, sigma_kp = -kp sin kx).
-    """
-
-    normal: tuple
-    tangential: tuple
-    antiplane: tuple
 
 
 @dataclass(frozen=True)
