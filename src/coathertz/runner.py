@@ -26,6 +26,7 @@ lock, so a killed run never leaves a store locked or open.
 
 from __future__ import annotations
 
+import functools
 import multiprocessing
 import os
 import signal
@@ -58,9 +59,10 @@ class Task:
     case: ContactCase
     method: Method
 
-    @property
+    @functools.cached_property
     def key(self) -> tuple[str, str, str]:
-        """(case key, method name, settings key): one method may run with several settings."""
+        """(case key, method name, settings key): one method may run with several settings.
+        Computed once per task (two hashes of JSON texts; a run asks about six times per task)."""
         return case_key(self.case), self.method.name, settings_key(self.method.settings())
 
 

@@ -58,6 +58,27 @@ def test_forked_renders_equal_serial_ones(tmp_path, forks):
     assert len(forks) == 3 and _all_collected(forks)
 
 
+@pytest.mark.parametrize("engine", ["tight", "constrained"])
+def test_one_pass_png_equals_savefig(tmp_path, engine):
+    """A figure with a layout engine is written from one drawing pass (``_write_png_drawn``):
+    the same bytes as matplotlib's ``savefig`` at the same resolution, which draws it twice."""
+    from coathertz.figstyle import PNG_DPI
+
+    def draw():
+        fig = _draw("one pass")
+        fig.set_layout_engine(engine)
+        im = fig.axes[1].pcolormesh([[0.0, 1.0], [2.0, 3.0]])
+        fig.colorbar(im, ax=fig.axes[1], label="error [%]")
+        fig.suptitle("a long title that the figure wraps to its width " * 3, fontsize=10)
+        return fig
+
+    ours = save(draw(), tmp_path, "ours")[0]
+    ref = draw()
+    ref._suptitle.set_wrap(True)
+    ref.savefig(tmp_path / "ref.png", dpi=PNG_DPI)
+    assert ours.read_bytes() == (tmp_path / "ref.png").read_bytes()
+
+
 def test_svg_only_on_request(tmp_path):
     with saving(("png", "svg"), jobs=2):
         paths = save(_draw("svg"), tmp_path, "g")
