@@ -26,7 +26,7 @@ import numpy as np
 
 from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError
-from coathertz.materials import Body
+from coathertz.stress_depths import default_depths
 
 
 @dataclass(frozen=True)
@@ -84,25 +84,6 @@ def fft_stresses(case: ContactCase, opt: StressOptions) -> StressResult:
                         f"FFT {opt.grid}^2", lattice, dict(f.meta))
 
 
-def default_depths(body: Body, a: float) -> np.ndarray:
-    """Depths [m] resolving the layers and both sides of each interface, down to ``max(3a, 2 H)``
-    (``H`` the total layer thickness; to ``H`` on a rigid base): 16 steps per layer, each
-    interface depth (the layer above) and ``1e-9`` of it deeper (the layer below), then 32
-    geometric steps. Homogeneous: 0 to a in 40 steps, a to 3a in 20."""
-    parts = [L for L in body.stack if L.h > 0]
-    if not parts:
-        return np.concatenate([np.linspace(0, a, 41), np.linspace(a, 3 * a, 21)[1:]])
-    zs, z0 = [np.zeros(1)], 0.0
-    for i, L in enumerate(parts):
-        if i:  # the lower side of the interface above
-            zs.append(np.array([z0 * (1 + 1e-9)]))
-        zs.append(z0 + np.linspace(0, L.h, 17)[1:])
-        z0 += L.h
-    if not body.material.is_rigid:
-        zs.append(np.geomspace(z0 * (1 + 1e-9), max(3 * a, 2 * z0), 32))
-    return np.concatenate(zs)
-
-
 def summary_radii(a: float, r_max: float) -> np.ndarray:
     """Radii [m] for the maxima: 0 to ``r_max``, clustered at and beyond the contact edge
     (steps ``a/200`` within ``0.8a .. 1.6a``, ``r = a`` itself included: the surface tension peaks
@@ -155,7 +136,7 @@ def axisym_stresses(case: ContactCase, opt: StressOptions) -> StressResult:
 def fem_stresses(case: ContactCase, opt: StressOptions) -> StressResult:
     """Axisymmetric FE solution (default mesh) and its recovered stresses sampled on the ``r-z``
     half-plane (:mod:`coathertz.fem.stress_points`): radii to ``min(3a, L)`` clustered at the
-    edge, the depths of :func:`default_depths`."""
+    edge, the depths of :func:`~coathertz.stress_depths.default_depths`."""
     from coathertz.fem.method import FEMMethod
     from coathertz.fem.post import StressField
     from coathertz.fem.stress_points import sample

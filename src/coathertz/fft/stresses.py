@@ -117,6 +117,7 @@ from coathertz.fft.stack_stresses import StackStressFRF
 from coathertz.fft.stress_rows import StressRows
 from coathertz.materials import Body
 from coathertz.results import ContactResult
+from coathertz.stress_depths import default_depths
 
 #: The stress components in the order of a field's component axis (Voigt order).
 COMPONENTS = ("xx", "yy", "zz", "yz", "xz", "xy")
@@ -511,28 +512,6 @@ def body_frf(body: Body, interface: str = "bonded"):
 def layers_depth(body: Body) -> float:
     """Total thickness [m] of the body's coating or layer stack (0 if none)."""
     return float(sum(L.h for L in body.stack))
-
-
-def default_depths(body: Body, a: float) -> np.ndarray:
-    """Depths [m]: dense in each layer (16 steps), both sides of each interface, and to 3a.
-
-    Homogeneous: 0 to a in 40 steps (the Hertz maximum at 0.48a), a to 3a in 20. Coated or
-    stacked (total thickness ``H``): 16 steps through each layer, each interface depth (the
-    layer above) and ``1e-9`` of it deeper (the layer below), then 32 geometric steps from
-    ``H (1 + 1e-9)`` to ``max(3a, 2H)`` (none on a rigid substrate).
-    """
-    parts = [L for L in body.stack if L.h > 0]
-    if not parts:
-        return np.concatenate([np.linspace(0, a, 41), np.linspace(a, 3 * a, 21)[1:]])
-    zs, z0 = [np.zeros(1)], 0.0
-    for i, L in enumerate(parts):
-        if i:  # the lower side of the interface above
-            zs.append(np.array([z0 * (1 + 1e-9)]))
-        zs.append(z0 + np.linspace(0, L.h, 17)[1:])
-        z0 += L.h
-    if not body.material.is_rigid:
-        zs.append(np.geomspace(z0 * (1 + 1e-9), max(3 * a, 2 * z0), 32))
-    return np.concatenate(zs)
 
 
 #: Default period in domain widths, and the largest the automatic rule of :func:`image_pad` takes.
