@@ -79,3 +79,22 @@ def test_bad_input_is_one_clear_line():
         contact_stresses(case, r, mu=-0.1)
     with pytest.raises(CoatHertzError, match="rigid"):
         contact_stresses(case, r, body=1)
+
+
+@pytest.mark.parametrize("H", [0.01, 0.1])
+def test_coating_of_the_substrates_material_is_the_homogeneous_field(H):
+    """A coating with the substrate's own elastic constants is no coating: its field equals the
+    homogeneous one (same pressure, same grid). The image correction's slope T1 used to be a
+    finite difference below the layered responses' floor w h = T_MIN, where they are frozen:
+    at H = 0.01 it left a uniform -1.8e-3 p0 (z = 0.48a) and -3.7e-3 p0 (z = a) in sigma_xx,
+    sigma_yy on every grid (32/64/128 alike). Measured after (n = 32..128): 1.2e-6 / 2.6e-6 p0
+    at H = 0.01 and 1.2e-7 / 2.6e-7 p0 at H = 0.1, not grid-dependent (the O(T_MIN) limit of
+    the responses); bound 2e-5 p0."""
+    case0 = ContactCase(Body.rigid_sphere(10e-3), Body(STEEL), 100.0)
+    r = FFTMethod(n=32, layer_cells=None).solve(case0)
+    case1 = ContactCase(Body.rigid_sphere(10e-3), Body(STEEL, Coating(STEEL, H * r.a)), 100.0)
+    z = r.a * np.array([0.48, 1.0])
+    F0 = contact_stresses(case0, r, depths=z)
+    F1 = contact_stresses(case1, r, depths=z)
+    diff = np.abs(F1.sigma - F0.sigma).max() / r.p0
+    assert diff < 2e-5, f"coating of the substrate's material: field differs by {diff:.2e} p0"

@@ -136,6 +136,11 @@ class StackStressFRF:
         """Depth of each layer's top face [m] (and, last, of the substrate's)."""
         return np.concatenate([[0.0], np.cumsum([L.h for L in self.layers])])
 
+    @property
+    def w_floor(self) -> float:
+        """Smallest wavenumber [1/m] the responses resolve (clamped below it)."""
+        return T_MIN / self.depth
+
     def _w(self, w) -> np.ndarray:
         return np.maximum(np.asarray(w, dtype=float), T_MIN / self.depth)
 
