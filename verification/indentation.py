@@ -851,7 +851,10 @@ def _plot_curves(result: C.StudyResult, curves: dict, outdir) -> list:
         x = np.array(cv["x"])
         f = fits(EY, x_fit)
         for ax, q in ((ax_P, "P"), (ax_a, "a"), (ax_pm, "pm")):
-            ax.plot(x, cv[q], "o-", color=col, ms=4, lw=1.2, label=f"FE, E/Y = {EY}")
+            # error bars: the path's discretisation uncertainty (second discretisation), where known
+            u = np.nan_to_num(np.array(cv.get(f"u_{q}", [np.nan] * len(x)), dtype=float))
+            ax.errorbar(x, cv[q], yerr=u if u.any() else None, fmt="o-", color=col, ms=4, lw=1.2,
+                        capsize=2, label=f"FE, E/Y = {EY} (bars: discretisation uncertainty)")
             ax.plot(x_fit, f[f"JG_{q}"], ":", color=col, lw=1.0, label=f"Jackson & Green, E/Y = {EY}")
         ax_pm.plot(
             x, cavity(EY, np.array(cv["a"])), "-.", color=col, lw=0.8, label=f"cavity model, E/Y = {EY}"
@@ -862,20 +865,9 @@ def _plot_curves(result: C.StudyResult, curves: dict, outdir) -> list:
         ax.set_xscale("log")
         ax.set_xlabel(r"approach $\delta/\delta_c$ [-]")
         ax.grid(alpha=0.3, which="both")
-    ax_P.plot(
-        x_fit[x_fit < 3],
-        x_fit[x_fit < 3] ** 1.5,
-        color="0.6",
-        lw=0.8,
-        label=r"Hertz, $(\delta/\delta_c)^{3/2}$",
-    )
-    ax_a.plot(
-        x_fit[x_fit < 3],
-        x_fit[x_fit < 3] ** 0.5,
-        color="0.6",
-        lw=0.8,
-        label=r"Hertz, $(\delta/\delta_c)^{1/2}$",
-    )
+    x_el = x_fit[x_fit < 3]  # Hertz near the onset: P/Pc = x^(3/2), a/ac = x^(1/2)
+    for ax, k, frac in ((ax_P, 1.5, "3/2"), (ax_a, 0.5, "1/2")):
+        ax.plot(x_el, x_el**k, color="0.6", lw=0.8, label=rf"Hertz, $(\delta/\delta_c)^{{{frac}}}$")
     ax_pm.axhline(2.8, color="0.4", lw=0.8, label="Tabor, 2.8 Y")
     ax_P.set_yscale("log")
     ax_a.set_yscale("log")

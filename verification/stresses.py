@@ -57,6 +57,7 @@ from coathertz import verification as C
 from coathertz.case import ContactCase
 from coathertz.closedform.hertz import hertz_circular
 from coathertz.materials import RIGID, Body, Coating, Material
+from coathertz.stress_summary import first_principal, von_mises
 
 NAME = "stresses"
 TITLE = "Stresses in coated bodies: first-yield load vs friction, cracking and interface-shear maps"
@@ -197,26 +198,6 @@ def classify(z: float, h: float | None) -> str:
     return "coating" if z < h else "substrate"
 
 
-def _first_principal(sig: np.ndarray) -> np.ndarray:
-    """Largest principal stress of a ``(nz, 6, ny, nx)`` field: the trigonometric root of the
-    characteristic cubic of a symmetric 3 x 3 matrix (closed form, vectorised)."""
-    xx, yy, zz, yz, xz, xy = (sig[:, j] for j in range(6))
-    q = (xx + yy + zz) / 3.0
-    off = xy**2 + xz**2 + yz**2
-    p = np.sqrt(((xx - q) ** 2 + (yy - q) ** 2 + (zz - q) ** 2 + 2.0 * off) / 6.0)
-    ps = np.where(p > 0, p, 1.0)
-    bx, by, bz = (xx - q) / ps, (yy - q) / ps, (zz - q) / ps
-    det = bx * (by * bz - (yz / ps) ** 2) - (xy / ps) * ((xy / ps) * bz - (yz / ps) * (xz / ps)) \
-        + (xz / ps) * ((xy / ps) * (yz / ps) - by * (xz / ps))
-    phi = np.arccos(np.clip(0.5 * det, -1.0, 1.0)) / 3.0
-    return q + 2.0 * p * np.cos(phi)
-
-
-def _von_mises(sig: np.ndarray) -> np.ndarray:
-    xx, yy, zz, yz, xz, xy = (sig[:, j] for j in range(6))
-    return np.sqrt(0.5 * ((xx - yy) ** 2 + (yy - zz) ** 2 + (zz - xx) ** 2) + 3.0 * (yz**2 + xz**2 + xy**2))
-
-
 def maxima(case: ContactCase, n: int, mu_values, keep: bool = False) -> dict:
     """FFT solve at ``case.W`` on an ``n`` grid, then for each ``mu``: the von Mises peak (value,
     location, class), the largest coating tension and interface shear, all over p0 (``keep``:
@@ -241,8 +222,8 @@ def maxima(case: ContactCase, n: int, mu_values, keep: bool = False) -> dict:
     iface = int(np.flatnonzero(z == h)[0]) if h is not None else None
     for mu in mu_values:
         S = Sp + mu * Sq
-        pk = peak(_von_mises(S), F0.x, F0.y, z, h)
-        s1 = _first_principal(S[coat])
+        pk = peak(von_mises(S), F0.x, F0.y, z, h)
+        s1 = first_principal(S[coat])
         tens = peak(s1, F0.x, F0.y, z[coat], None)
         row = {"vm": pk.value, "vm_over_p0": pk.value / p0, "at": pk.at, "where": classify(pk.at[2], h),
                "tensile_over_p0": tens.value / p0, "tensile_at": tens.at}
@@ -253,7 +234,7 @@ def maxima(case: ContactCase, n: int, mu_values, keep: bool = False) -> dict:
         out["by_mu"][mu] = row
     if keep:
         mu = max(mu_values)
-        out["field"] = {"x": F0.x, "y": F0.y, "z": z, "vm": _von_mises(Sp + mu * Sq), "mu": mu, "h": h}
+        out["field"] = {"x": F0.x, "y": F0.y, "z": z, "vm": von_mises(Sp + mu * Sq), "mu": mu, "h": h}
     return out
 
 

@@ -32,6 +32,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from coathertz.stress_summary import von_mises
+
 __all__ = ["normal_part", "sliding_stresses", "tangential_part", "von_mises_max_xz"]
 
 
@@ -136,11 +138,6 @@ def sliding_stresses(x, y, z, nu: float, mu: float) -> np.ndarray:
     return normal_part(x, y, z, nu) + mu * tangential_part(x, y, z, nu)
 
 
-def _von_mises(s: np.ndarray) -> np.ndarray:
-    xx, yy, zz, yz, xz, xy = s
-    return np.sqrt(0.5 * ((xx - yy) ** 2 + (yy - zz) ** 2 + (zz - xx) ** 2) + 3.0 * (yz**2 + xz**2 + xy**2))
-
-
 def von_mises_max_xz(nu: float, mu: float, nx: int = 241, nz: int = 121, zmax: float = 1.0,
                      xmax: float = 1.2) -> tuple[float, float, float, float]:
     """Largest von Mises stress / p0 in the plane ``y = 0`` (where it lies, by symmetry) on an
@@ -150,7 +147,7 @@ def von_mises_max_xz(nu: float, mu: float, nx: int = 241, nz: int = 121, zmax: f
     xs = np.linspace(-xmax, xmax, nx)
     zs = np.linspace(0.0, zmax, nz)
     X, Z = np.meshgrid(xs, zs)
-    vm = _von_mises(sliding_stresses(X, 0.0 * X, Z, nu, mu))
+    vm = von_mises(sliding_stresses(X, 0.0 * X, Z, nu, mu), axis=0)
     k, i = np.unravel_index(np.argmax(vm), vm.shape)
     value, xm, zm = float(vm[k, i]), float(xs[i]), float(zs[k])
     for axis, coords in ((1, xs), (0, zs)):

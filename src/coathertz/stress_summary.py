@@ -17,19 +17,29 @@ from coathertz.materials import Body
 COMPONENTS = ("xx", "yy", "zz", "yz", "xz", "xy")
 
 
-def von_mises(sig: np.ndarray) -> np.ndarray:
-    """Von Mises stress of a ``(..., 6, ...)`` field with the components on axis 1."""
-    xx, yy, zz, yz, xz, xy = np.moveaxis(sig, 1, 0)
+def von_mises(sig: np.ndarray, axis: int = 1) -> np.ndarray:
+    """Von Mises stress of a field with the six components (:data:`COMPONENTS` order) on
+    ``axis``."""
+    xx, yy, zz, yz, xz, xy = np.moveaxis(sig, axis, 0)
     return np.sqrt(0.5 * ((xx - yy) ** 2 + (yy - zz) ** 2 + (zz - xx) ** 2)
                    + 3.0 * (yz**2 + xz**2 + xy**2))
 
 
 def first_principal(sig: np.ndarray) -> np.ndarray:
-    """Largest principal stress (tension positive) of a ``(nz, 6, ny, nx)`` field."""
+    """Largest principal stress (tension positive) of a ``(nz, 6, ny, nx)`` field: the
+    trigonometric root of the characteristic cubic of the symmetric 3 x 3 tensor (closed form,
+    vectorised; the largest root is well conditioned also where two roots coincide, as on the
+    axis of a circular contact)."""
     xx, yy, zz, yz, xz, xy = (sig[:, j] for j in range(6))
-    T = np.stack([np.stack([xx, xy, xz], -1), np.stack([xy, yy, yz], -1),
-                  np.stack([xz, yz, zz], -1)], -2)
-    return np.linalg.eigvalsh(T)[..., -1]
+    q = (xx + yy + zz) / 3.0
+    off = xy**2 + xz**2 + yz**2
+    p = np.sqrt(((xx - q) ** 2 + (yy - q) ** 2 + (zz - q) ** 2 + 2.0 * off) / 6.0)
+    ps = np.where(p > 0, p, 1.0)
+    bx, by, bz = (xx - q) / ps, (yy - q) / ps, (zz - q) / ps
+    bxy, bxz, byz = xy / ps, xz / ps, yz / ps
+    det = bx * (by * bz - byz**2) - bxy * (bxy * bz - byz * bxz) + bxz * (bxy * byz - by * bxz)
+    phi = np.arccos(np.clip(0.5 * det, -1.0, 1.0)) / 3.0
+    return q + 2.0 * p * np.cos(phi)
 
 
 def _entry(values: np.ndarray, mask: np.ndarray, x, y, z, p0: float) -> dict | None:
