@@ -56,6 +56,8 @@ def cold_peak_mib(m: AxisymMethod, case: ContactCase) -> float:
     axisym_solver._TABLES.clear()
     axisym_solver._TAIL.clear()
     axisym_solver._CONST.clear()
+    axisym_solver._ENV.clear()
+    axisym_solver._BASIS.clear()
     tracemalloc.start()
     m.solve(case)
     peak = tracemalloc.get_traced_memory()[1] / 2**20
