@@ -196,15 +196,20 @@ def tail_matrix(pc: PairCompliance, a: float, n_modes: int, X0: float, X1: float
 def _by_parts(g: np.ndarray, Z: np.ndarray, s: float, X0: float) -> np.ndarray:
     """Real part of ``int_X0^inf G(x) e^{2ix} dx`` by parts, ``G(x) = g(x) Z(x) Z(x)^T``, from its
     values at the five points ``X0 + (j - 2) s`` (columns of ``Z``, entries of ``g``): ``G`` and
-    its first three derivatives at ``X0`` by fourth-order differences."""
-    G = [g[j] * np.outer(Z[:, j], Z[:, j]) for j in range(5)]
-    d0 = G[2]
-    d1 = (G[0] - 8.0 * G[1] + 8.0 * G[3] - G[4]) / (12.0 * s)
-    d2 = (-G[0] + 16.0 * G[1] - 30.0 * G[2] + 16.0 * G[3] - G[4]) / (12.0 * s * s)
-    d3 = (-G[0] + 2.0 * G[1] - 2.0 * G[3] + G[4]) / (2.0 * s**3)
+    its first three derivatives at ``X0`` by fourth-order differences.
+
+    Every term is a combination of the five ``G_j = g_j Z_j Z_j^T``, so the sum is
+    ``Z diag(gamma) Z^T`` with ``gamma_j = g_j sum_k alpha_k D_kj`` (``D``: the difference
+    stencils, ``alpha_k = -e^{2iX0} (-1)^k / (2i)^(k+1)``): one product instead of five outer
+    products."""
+    D = np.array([[0.0, 0.0, 1.0, 0.0, 0.0],
+                  [1.0, -8.0, 0.0, 8.0, -1.0],
+                  [-1.0, 16.0, -30.0, 16.0, -1.0],
+                  [-1.0, 2.0, 0.0, -2.0, 1.0]]) / np.array([[1.0], [12.0 * s], [12.0 * s * s], [2.0 * s**3]])
     i2 = 2.0j
-    osc = -np.exp(2.0j * X0) * (d0 / i2 - d1 / i2**2 + d2 / i2**3 - d3 / i2**4)
-    return osc.real
+    alpha = -np.exp(2.0j * X0) * np.array([1.0 / i2, -1.0 / i2**2, 1.0 / i2**3, -1.0 / i2**4])
+    gamma = g * (alpha @ D)
+    return ((Z * gamma) @ Z.T).real
 
 
 # --- solution at a given contact radius ----------------------------------------------------------
