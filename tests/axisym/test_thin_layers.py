@@ -3,7 +3,8 @@ and the smooth edge as stationarity of the load (``edge_condition="energy"``).
 
 Checked against a brute-force reference (Legendre modes only, 400 modes, 12 nodes per panel;
 ``N^2 h/a >= 160`` at ``h/a = 1e-3``, where it is converged to ~1e-11), by self-convergence at
-``h/a = 1e-5`` (where no Legendre-only reference is affordable: it would need ~600 modes), and
+``h/a = 1e-5`` (where no Legendre-only reference is affordable: it would need ~600 modes; nested
+edge bases, ``test_thin_self_convergence.py``), and
 piece by piece (quadratures against finer rules). Measured values are in the messages.
 """
 
@@ -151,7 +152,7 @@ def test_default_matches_high_mode_reference(name):
 
 def test_h_1e4_matches_high_mode_reference():
     """h/a = 1e-4 (400 modes: N^2 h/a = 16, converged to ~1e-10 there): measured delta 1.6e-12,
-    a 1.5e-10 (the reference's own error, see the self-convergence below), p0 2.4e-9."""
+    a 1.5e-10 (the reference's own error; self-convergence: test_thin_self_convergence.py), p0 2.4e-9."""
     case = coated(4.0, 1e-4)
     r = AxisymMethod(keep_fields=False).solve(case)
     ref = AxisymMethod(**REFERENCE).solve(case)
@@ -159,30 +160,8 @@ def test_h_1e4_matches_high_mode_reference():
     assert e["delta"] < 1e-10 and e["a"] < 1e-9 and e["p0"] < 1e-8, fmt(e)
 
 
-# --- self-convergence where no reference is affordable ------------------------------------------
-
-
-@pytest.mark.parametrize("E_ratio", [0.25, 4.0])
-def test_self_convergence_at_h_1e5(E_ratio):
-    """h/a = 1e-5: the edge-function ratio 2 -> 1.5 -> 1.25 (default) against 96 modes and ratio
-    1.15: the errors fall (observed rate in the message) and the defaults are within 1e-10 in
-    delta and a and 1e-8 in p0."""
-    case = coated(E_ratio, 1e-5)
-    ref = AxisymMethod(edge_modes=96, edge_ratio=1.15, order=12, keep_fields=False).solve(case)
-    ratios = [2.0, 1.5, 1.25]
-    errs = {q: [] for q in QS}
-    for ratio in ratios:
-        r = AxisymMethod(edge_ratio=ratio, keep_fields=False).solve(case)
-        for q in QS:
-            errs[q].append(max(rel(getattr(r, q), getattr(ref, q)), 1e-16))
-    for q in QS:
-        slope = np.polyfit(np.log(np.array(ratios) - 1.0), np.log10(errs[q]), 1)[0]
-        msg = (f"E = {E_ratio}, {q}: errors {[f'{x:.1e}' for x in errs[q]]} at ratio {ratios}; "
-               f"observed {slope:.1f} decades per e-fold of (ratio - 1)")
-        limit = 1e-8 if q == "p0" else 1e-10
-        assert errs[q][-1] < limit, msg
-        if errs[q][0] > 1e-10:  # not already at the reference's level
-            assert errs[q][-1] < errs[q][0], msg
+# --- self-convergence where no reference is affordable: h/a = 1e-5 and thin stacks, with nested
+# edge bases, in tests/axisym/test_thin_self_convergence.py ---------------------------------------
 
 
 def test_thin_limit_is_substrate_hertz_and_continuous_across_regimes():

@@ -6,8 +6,9 @@ less sensitive than wall time to other jobs on a shared machine):
 1. thin to thick single coatings (example:b4c_on_steel, h = H a0s, H from 1e-5 to 10, and its
    1 nm coating): median CPU time per case (warm caches; goal <= 50 ms), traced peak memory of a
    cold solve (caches cleared; goal <= 200 MB), the regime (Legendre modes, edge functions), and
-   the difference of delta, a, p0 to a refined solve (edge functions: 96 modes, ratio 1.15,
-   12 nodes per panel; Legendre-only: twice the modes, 12 nodes per panel; goal <= 1e-8);
+   the difference of delta, a, p0 to a refined solve (edge functions: the next level of the
+   nested sequence, ratio 1.25^(1/2) with the same scale range, 12 nodes per panel;
+   Legendre-only: twice the modes, 12 nodes per panel; goal <= 1e-8);
 2. stacks of 1 to 4 layers at H >= 0.01 (thinnest layer; random moduli 1/10..10 of steel, random
    thicknesses): median CPU time per case (goal <= 20 ms), and 3-layer stacks with every layer
    at H = 1e-5 .. 1e-3 (goal <= 50 ms); for both the cold traced peak of three cases and the
@@ -67,7 +68,9 @@ def cold_peak_mib(m: AxisymMethod, case: ContactCase) -> float:
 
 def refined(case: ContactCase, r) -> object:
     if r.meta["n_edge"]:
-        return AxisymMethod(edge_modes=96, edge_ratio=1.15, order=12, keep_fields=False).solve(case)
+        # the next level of the nested sequence (tests/axisym/test_thin_self_convergence.py): the
+        # same finest and top scales at ratio 1.25^(1/2), so its basis contains the default's
+        return AxisymMethod(edge_ratio=1.25**0.5, order=12, keep_fields=False).solve(case)
     return AxisymMethod(n_modes=min(2 * r.meta["n_modes"], 400), order=12, keep_fields=False).solve(case)
 
 

@@ -140,8 +140,8 @@ class AxisymMethod:
             raise CoatHertzError(f"edge must be None, True or False, got {self.edge!r}")
         if not (isinstance(self.edge_modes, int) and 8 <= self.edge_modes <= 160):
             raise CoatHertzError(f"edge_modes must be an integer in [8, 160], got {self.edge_modes!r}")
-        if not (isinstance(self.edge_ratio, float | int) and 1.1 <= self.edge_ratio <= 3.0):
-            raise CoatHertzError(f"edge_ratio must be in [1.1, 3], got {self.edge_ratio!r}")
+        if not (isinstance(self.edge_ratio, float | int) and 1.05 <= self.edge_ratio <= 8.0):
+            raise CoatHertzError(f"edge_ratio must be in [1.05, 8], got {self.edge_ratio!r}")
         if not (isinstance(self.order, int) and 4 <= self.order <= 64):
             raise CoatHertzError(f"order must be an integer in [4, 64], got {self.order!r}")
         if not (isinstance(self.panel, float | int) and 0.1 <= self.panel <= 20.0):

@@ -444,7 +444,7 @@ def solve_at_radius(
 
 
 #: Relative eigenvalue of the enriched Gram matrix below which a direction of the span is dropped.
-GRAM_TOL = 1e-14
+GRAM_TOL = 1e-15
 
 
 # --- load control ---------------------------------------------------------------------------------
