@@ -136,21 +136,31 @@ def _through_thin(X: np.ndarray, t: np.ndarray, S: np.ndarray) -> np.ndarray:
     return _const_congruence(S, P @ Y @ np.swapaxes(P, 1, 2))
 
 
+def _basis(z: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """``f, f', f'', f'''`` of the four bounded basis functions at depth ``z`` in a layer of
+    thickness ``t`` (``z``, ``t`` arrays of the same shape): shape ``(4 derivs, 4 funcs, ...)``."""
+    e1 = np.exp(-z)
+    e2 = np.exp(z - t)
+    s = t - z
+    out = np.empty((4, 4, *np.shape(z)), dtype=np.result_type(z, t, float))
+    # e^{-z}
+    out[:, 0] = np.stack([e1, -e1, e1, -e1])
+    # z e^{-z}
+    out[:, 1] = np.stack([z * e1, (1.0 - z) * e1, (z - 2.0) * e1, (3.0 - z) * e1])
+    # e^{z - t}
+    out[:, 2] = np.stack([e2, e2, e2, e2])
+    # (t - z) e^{z - t} = s e^{-s}, d/dz = -d/ds
+    out[:, 3] = np.stack([s * e2, -(1.0 - s) * e2, (s - 2.0) * e2, -(3.0 - s) * e2])
+    return out
+
+
 def _through_thick(X: np.ndarray, t: np.ndarray, S: np.ndarray) -> np.ndarray:
     """``M(0) * (M(t)^T (*X) M(t)) M(0)^T`` (``|t| >= T_THIN``) in the bounded basis
-    ``e^{-z}, z e^{-z}, e^{z-t}, (t-z) e^{z-t}`` (state matrix ``M(z) = S Psi(z)``): the plane
-    of the top states ``M(0) c`` of the solutions whose bottom states ``M(t) c`` lie in ``X``."""
-    e = np.exp(-t)
-    Pt = np.empty((t.size, 4, 4), dtype=t.dtype)  # Psi(t)
-    Pt[:, 0, 0], Pt[:, 1, 0], Pt[:, 2, 0], Pt[:, 3, 0] = e, -e, e, -e
-    Pt[:, 0, 1], Pt[:, 1, 1], Pt[:, 2, 1], Pt[:, 3, 1] = t * e, (1.0 - t) * e, (t - 2.0) * e, (3.0 - t) * e
-    Pt[:, :, 2] = 1.0
-    Pt[:, 0, 3], Pt[:, 1, 3], Pt[:, 2, 3], Pt[:, 3, 3] = 0.0, -1.0, -2.0, -3.0
-    P0 = np.empty_like(Pt)  # Psi(0)
-    P0[:, :, 0] = _DECAYING0[:, 0]
-    P0[:, :, 1] = _DECAYING0[:, 1]
-    P0[:, :, 2] = e[:, None]
-    P0[:, 0, 3], P0[:, 1, 3], P0[:, 2, 3], P0[:, 3, 3] = t * e, (t - 1.0) * e, (t - 2.0) * e, (t - 3.0) * e
+    ``e^{-z}, z e^{-z}, e^{z-t}, (t-z) e^{z-t}`` (state matrix ``M(z) = S Psi(z)``, ``Psi`` from
+    :func:`_basis`): the plane of the top states ``M(0) c`` of the solutions whose bottom states
+    ``M(t) c`` lie in ``X``."""
+    Pt = np.moveaxis(_basis(t, t), -1, 0)  # Psi(t), (n, 4 derivs, 4 funcs)
+    P0 = np.moveaxis(_basis(np.zeros_like(t), t), -1, 0)  # Psi(0)
     Q = _const_congruence(S.T, _star(X))  # S^T (*X) S
     Q = _star(np.swapaxes(Pt, 1, 2) @ Q @ Pt)
     return _const_congruence(S, P0 @ Q @ np.swapaxes(P0, 1, 2))
@@ -211,9 +221,9 @@ def stack_layer_factor(layers: Sequence[StackLayer], substrate: Material, k: np.
     return 0.5 * top.E_star * uz / G_ref
 
 
-# --- The layer states in the bounded basis, for fields *inside* the layers (the FFT stresses of
-# a stack, :mod:`coathertz.fft.stack_stresses`, sweep spanning states with these; F above uses
-# the Plücker form). Same definitions as the module docstring's ``S`` and bounded basis.
+# --- The layer states in the bounded basis (:func:`_basis`, the one definition that F above also
+# uses), for fields *inside* the layers (the FFT stresses of a stack,
+# :mod:`coathertz.fft.stack_stresses`, sweep spanning states with these; F uses the Plücker form).
 
 
 def _state(f: np.ndarray, G: float, nu: float) -> np.ndarray:
@@ -221,24 +231,6 @@ def _state(f: np.ndarray, G: float, nu: float) -> np.ndarray:
     f0, f1, f2, f3 = f
     return np.stack([(-(2.0 - nu) * f1 + (1.0 - nu) * f3) / (2.0 * G),
                      ((1.0 - nu) * f2 + nu * f0) / (2.0 * G), -f0, f1])
-
-
-def _basis(z: np.ndarray, t: np.ndarray) -> np.ndarray:
-    """``f, f', f'', f'''`` of the four bounded basis functions at depth ``z`` in a layer of
-    thickness ``t`` (``z``, ``t`` arrays of the same shape): shape ``(4 derivs, 4 funcs, ...)``."""
-    e1 = np.exp(-z)
-    e2 = np.exp(z - t)
-    s = t - z
-    out = np.empty((4, 4, *np.shape(z)), dtype=np.result_type(z, t, float))
-    # e^{-z}
-    out[:, 0] = np.stack([e1, -e1, e1, -e1])
-    # z e^{-z}
-    out[:, 1] = np.stack([z * e1, (1.0 - z) * e1, (z - 2.0) * e1, (3.0 - z) * e1])
-    # e^{z - t}
-    out[:, 2] = np.stack([e2, e2, e2, e2])
-    # (t - z) e^{z - t} = s e^{-s}, d/dz = -d/ds
-    out[:, 3] = np.stack([s * e2, -(1.0 - s) * e2, (s - 2.0) * e2, -(3.0 - s) * e2])
-    return out
 
 
 def state_matrix(z: np.ndarray, t: np.ndarray, mat: Material, G_ref: float) -> np.ndarray:
