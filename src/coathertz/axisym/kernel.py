@@ -166,6 +166,7 @@ class _StackTable:
         # interpolation at the Chebyshev points: one solve for all panels (was chebfit per panel)
         V = npcheb.chebvander(x, STACK_NODES - 1)
         self.coef = np.linalg.solve(V, vals[:n].reshape(s.shape).T).T
+        self.coef_t = np.ascontiguousarray(self.coef.T)  # (nodes, panels): rows gathered per call
         self.F_lo = float(vals[-3])
         # relative to max(|F|, 1): F reaches E_1*/E_s* (~70 for a stiff top on a soft stack), where
         # round-off alone is 1e-13 absolute
@@ -181,13 +182,14 @@ class _StackTable:
         s = np.log(t)
         i = np.clip(((s - self.s0) / self.w).astype(int), 0, self.n_pan - 1)
         x = 2.0 * (s - self.s0 - i * self.w) / self.w - 1.0
-        c = self.coef[i]  # (n, nodes)
+        c = self.coef_t[:, i]  # (nodes, n): each row contiguous
         # Clenshaw, vectorised over points with their own coefficients
-        b1 = np.zeros_like(x)
+        x2 = 2.0 * x
+        b1 = c[STACK_NODES - 1].copy()
         b2 = np.zeros_like(x)
-        for j in range(STACK_NODES - 1, 0, -1):
-            b1, b2 = 2.0 * x * b1 - b2 + c[:, j], b1
-        return x * b1 - b2 + c[:, 0]
+        for j in range(STACK_NODES - 2, 0, -1):
+            b1, b2 = x2 * b1 - b2 + c[j], b1
+        return x * b1 - b2 + c[0]
 
     def __call__(self, t: np.ndarray) -> np.ndarray:
         t = np.asarray(t, dtype=float)
