@@ -91,11 +91,11 @@ geometric (ratio 1.25) from ``h/(32 a)`` to 1/64 (20-50 functions): their cosine
 one-dimensional ``xi`` integral, with the same tail treatment (every basis function is
 ``Re(U e^{i xi})`` beyond ``X0``); the nearly dependent edge functions are handled in an orthonormal
 basis of their span (Gram eigenvectors above 1e-15 of the largest). The smooth edge is then imposed
-as stationarity of the load at fixed ``delta`` (``dW/da = 0`` with ``W = 2 E_ref a (delta P_1 - q
-P_12)`` from Galerkin energies and their exact ``a``-derivatives,
+as stationarity of the load at fixed ``delta`` (``dW/da = 0`` with
+``W = 2 E_ref a (delta P_1 - q P_12)`` from Galerkin energies and their exact ``a``-derivatives,
 :func:`~coathertz.axisym.solver.solve_at_radius`), which is variational: ``g(1) = 0`` is a point
-value at the boundary layer and converges slowly (48 modes,
-``h/a = 1e-3``: 4e-6 against 1e-8). The pressure imposes ``g(1) = 0`` in its Abel formula. Below
+value at the boundary layer and converges slowly (48 modes, ``h/a = 1e-3``: 4e-6 against 1e-8).
+The pressure imposes ``g(1) = 0`` in its Abel formula. Below
 ``h/a = 2e-8`` the layer moves delta, a, p0 by < 1e-8 and 32 Legendre modes with the energy condition
 are used (a off by ~0.17 h/a). Measured (``tests/axisym/test_thin_layers.py``,
 ``tests/benchmarks/bench_axisym_thin.py``): against 400 Legendre modes at ``h/a = 1e-3``
