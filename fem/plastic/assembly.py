@@ -104,10 +104,11 @@ class BBarAssembler:
     def evaluate(self, u: np.ndarray, states: list, tangent: bool = True):
         """Stresses, tangents and trial states of every region at displacement ``u``.
 
-        Returns ``(F_int, K or None, sigmas, new_states)``.
+        Returns ``(F_int, K or None, sigmas, new_states)``. With the tangent, ``K.nonelastic``
+        holds the (global) indices of the elements whose tangent is not the elastic one.
         """
         F = np.zeros(self.n)
-        Ke_all, sigmas, new_states = [], [], []
+        Ke_all, sigmas, new_states, nonelastic = [], [], [], []
         for k, ((els, law), st) in enumerate(zip(self.regions, states, strict=True)):
             Bq, w, ed = self._Bq[k], self._wq[k], self._eq[k]
             eps = np.einsum("iaeq,ae->ieq", Bq, u[ed])
@@ -120,6 +121,7 @@ class BBarAssembler:
                 # elements whose tangent is the elastic one at every point keep their elastic
                 # stiffness (the same numbers); the others are integrated again
                 changed = np.nonzero(np.any(D != D_el[:, :, None, None], axis=(0, 1, 3)))[0]
+                nonelastic.append(els[changed])
                 if changed.size:
                     Ke = Ke.copy()
                     Ke[changed] = self._element_stiffness(els[changed], D[:, :, changed], Bq[:, :, changed])
@@ -131,7 +133,19 @@ class BBarAssembler:
             vals = np.concatenate([Ke.ravel() for Ke in Ke_all])
             data = np.bincount(self._slot, weights=vals, minlength=len(self._indices))
             K = sp.csr_matrix((data, self._indices, self._indptr), shape=(self.n, self.n))
+            K.nonelastic = np.concatenate(nonelastic) if nonelastic else np.zeros(0, dtype=np.int64)
         return F, K, sigmas, new_states
+
+    def elastic_matrix(self, mask: np.ndarray) -> sp.csr_matrix:
+        """The elastic stiffness of the elements in ``mask`` (boolean over all elements; the
+        others contribute nothing), from the same cached element matrices as :meth:`evaluate`
+        (the same numbers, so that a split ``K = K^E + K^N`` is exact to round-off in the sum)."""
+        vals = []
+        for k, (els, law) in enumerate(self.regions):
+            Ke = self._elastic(k, els, law)[1]
+            vals.append((Ke * mask[els][:, None, None]).ravel())
+        data = np.bincount(self._slot, weights=np.concatenate(vals), minlength=len(self._indices))
+        return sp.csr_matrix((data, self._indices, self._indptr), shape=(self.n, self.n))
 
     def _element_stiffness(self, els: np.ndarray, D: np.ndarray, Bq: np.ndarray | None = None) -> np.ndarray:
         """``Ke[nel, 18, 18]`` of ``elements`` with the tangent ``D[4, 4, nel, nq]`` (``Bq``: their

@@ -465,6 +465,7 @@ def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_sn
         "bbar": bbar,
         "n_steps": n_steps, "unload": bool(unload), "reload": bool(reload), "control": control,
         "increments": len(increments), "factorisations": int(factorisations),
+        "linear_solves": dict(geom.solves),  # condensed / whole-tangent solves, condensations built
         "wall_time": sum(rec_.wall_time for rec_ in records), "R_model": R, "delta_factor": eq.delta_factor,
         "targets": meta_targets,
         "newton_iterations_total": int(sum(curves["newton_iterations"])),
