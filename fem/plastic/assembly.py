@@ -113,8 +113,8 @@ class BBarAssembler:
             Bq, w, ed = self._Bq[k], self._wq[k], self._eq[k]
             eps = np.einsum("iaeq,ae->ieq", Bq, u[ed])
             sig, D, st_new = law.stress(eps, st)
-            fe = np.einsum("iaeq,ieq,eq->ae", Bq, sig, w)
-            np.add.at(F, ed, fe)
+            fe = np.einsum("iaeq,ieq->ae", Bq, sig * w)
+            F += np.bincount(ed.ravel(), weights=fe.ravel(), minlength=self.n)
             if tangent:
                 D = np.broadcast_to(D, (4, 4, *eps.shape[1:]))
                 D_el, Ke = self._elastic(k, els, law)

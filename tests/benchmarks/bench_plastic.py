@@ -32,10 +32,11 @@ import platform
 import time
 
 from coathertz.case import ContactCase
+from coathertz.fem.plastic.contact import NewtonSettings
 from coathertz.fem.plastic.method import solve_plastic
 from coathertz.materials import Body, Material, Plasticity
 
-Y, R = 1e9, 0.01
+R = 0.01
 
 
 def main(argv=None) -> int:
@@ -44,17 +45,38 @@ def main(argv=None) -> int:
     ap.add_argument("--mesh", default="default", choices=["coarse", "default", "fine"])
     ap.add_argument("--approach", type=float, default=None, help="approach control to this many um")
     ap.add_argument("--unload", action="store_true", help="with --approach: unload after loading")
+    ap.add_argument("--baseline", action="store_true",
+                    help="also solve the path factorising the whole tangent every iteration "
+                         "(no condensation) "
+                         "and print the CPU ratio")
+    ap.add_argument("--delta-ratio", type=float, default=None,
+                    help="approach control to this delta/delta_c (overrides --approach)")
+    ap.add_argument("--EY", type=float, default=200.0, help="E / Y (E = 200 GPa; default Y = 1 GPa)")
     args = ap.parse_args(argv)
+    Y = 200e9 / args.EY
     mat = Material(200e9, 0.3, plasticity=Plasticity(Y))
     W_y = (1.6128 * Y) ** 3 * math.pi**3 * R**2 / (6 * mat.E_star**2)
     case = ContactCase(Body.rigid_sphere(R), Body.half_space(mat), 3.0 * W_y)
-    t0, c0 = time.perf_counter(), time.process_time()
-    if args.approach is None:
-        res = solve_plastic(case, mesh=args.mesh, n_steps=args.steps, unload=True)
-    else:
-        res = solve_plastic(case, mesh=args.mesh, n_steps=args.steps, delta_max=args.approach * 1e-6,
-                            unload=args.unload)
-    wall, cpu = time.perf_counter() - t0, time.process_time() - c0
+    if args.delta_ratio is not None:  # delta_c = a_y^2 / R, a_y = pi R p0_y / (2 E*)
+        a_y = math.pi * R * 1.6128 * Y / (2 * mat.E_star)
+        args.approach = args.delta_ratio * a_y**2 / R * 1e6
+
+    def run(condense: bool):
+        t0, c0 = time.perf_counter(), time.process_time()
+        newton = NewtonSettings(condense=condense)
+        if args.approach is None:
+            res = solve_plastic(case, mesh=args.mesh, n_steps=args.steps, unload=True, newton=newton)
+        else:
+            res = solve_plastic(case, mesh=args.mesh, n_steps=args.steps, delta_max=args.approach * 1e-6,
+                                unload=args.unload, newton=newton)
+        return res, time.perf_counter() - t0, time.process_time() - c0
+
+    if args.baseline:
+        base, _, cpu0 = run(False)
+        print(f"baseline (whole tangent factorised every iteration): CPU {cpu0:.1f} s, "
+              f"final/largest load {max(base.curves['W']):.7g} N, "
+              f"{base.meta['newton_iterations_total']} Newton iterations")
+    res, wall, cpu = run(True)
     m, c = res.meta, res.curves
     print(f"machine: {platform.processor() or platform.machine()}, {os.cpu_count()} cpus "
           f"(load average {os.getloadavg()[0]:.1f})")
@@ -68,6 +90,10 @@ def main(argv=None) -> int:
     print(f"wall {wall:.1f} s, CPU {cpu:.1f} s "
           "(target: <= 3 s for the README path of >= 20 increments)")
     print("Newton iterations per increment:", " ".join(str(k) for k in c["newton_iterations"]))
+    print(f"linear solves: {m['linear_solves']}; largest load {max(c['W']):.7g} N")
+    if args.baseline:
+        print(f"CPU ratio baseline / now: {cpu0 / cpu:.2f}; largest load moved by "
+              f"{max(c['W']) / max(base.curves['W']) - 1:.2e} (relative)")
     depth = res.final["residual_depth"]
     print(f"final load {c['W'][-1]:.5g} N, residual depth "
           f"{'-' if depth is None else f'{depth * 1e9:.2f} nm'}, max ep {m['plastic_zone']['ep_max']:.4g}")
