@@ -21,7 +21,9 @@ without pivoting (:class:`coathertz.fem.solvers.CondensedFactor`), which gives `
 trailing block of its LU. Both ``t`` and ``u_e`` come from full solves with ``A``:
 ``A [x; y] = [b_e; 0]`` gives ``t = -S^E y``, and ``A [x; y] = [b_e; t + S^E u_g]`` gives
 ``y = u_g``, ``x = u_e``. Per Newton iteration only the sparse ``n`` block (plus the dense
-``g x g`` block, ordered last) is factorised.
+``g x g`` block, ordered last) is factorised, and not even that when the tangent and the
+active set are those of the last solve (elastic unloading: the next increment's first
+iteration).
 
 The split is exact, not an approximation, as long as every ``E`` element has the elastic tangent
 (the assembler reports the elements whose tangent changed,
@@ -46,7 +48,7 @@ from coathertz.fem.solvers import CondensedFactor
 #: A rebuilt box reaches this factor beyond the plastic zone and contact it must hold.
 BOX_GROWTH = 1.5
 #: No condensation when the box would hold more than this fraction of the elements.
-MAX_FRACTION = 0.6
+MAX_FRACTION = 0.9
 
 
 @dataclass
@@ -113,6 +115,8 @@ class ElasticCondensation:
         self.ne, self.ng = len(self.e), len(self.g)
         self.n_box = int(self.n_mask.sum())
         self.Di, self.Dj = np.nonzero(np.ones_like(self.D, dtype=bool))
+        self._last = None  # (order, tangent data, factors) of the last box factorisation
+        self.reused = 0  # box factorisations reused (the same tangent and active set)
 
     def valid(self, nonelastic: np.ndarray, active_dofs: np.ndarray) -> bool:
         """The split is exact: the elements with a changed tangent lie in the box and the active
@@ -132,12 +136,19 @@ class ElasticCondensation:
         is_fixed = np.zeros(n, dtype=bool)
         is_fixed[fixed] = True
         order = self.order[~is_fixed[self.order]]  # g stays last: none of it is fixed
-        Kp = K[order][:, order].tocoo()
         off = len(order) - self.ng
-        rows = np.concatenate([Kp.row, self.Di + off])
-        cols = np.concatenate([Kp.col, self.Dj + off])
-        M = sp.coo_matrix((np.concatenate([Kp.data, -self.D.ravel()]), (rows, cols)), shape=Kp.shape).tocsc()
-        lu = spla.splu(M, permc_spec="NATURAL", diag_pivot_thresh=0.01, options={"SymmetricMode": True})
+        last = self._last
+        if last is not None and np.array_equal(last[0], order) and np.array_equal(last[1], K.data):
+            lu = last[2]  # the same tangent and active set (elastic unloading): the same factors
+            self.reused += 1
+        else:
+            Kp = K[order][:, order].tocoo()
+            rows = np.concatenate([Kp.row, self.Di + off])
+            cols = np.concatenate([Kp.col, self.Dj + off])
+            data = np.concatenate([Kp.data, -self.D.ravel()])
+            M = sp.coo_matrix((data, (rows, cols)), shape=Kp.shape).tocsc()
+            lu = spla.splu(M, permc_spec="NATURAL", diag_pivot_thresh=0.01, options={"SymmetricMode": True})
+            self._last = (order, K.data.copy(), lu)
         be = Bm[self.e]
         y0 = self.factor.solve(np.vstack([be, np.zeros((self.ng, m))]))[self.ne:]
         t = -self.S @ y0

@@ -119,7 +119,7 @@ class ContactGeometry:
     a_hint: Callable[[float], float] | None = None  # contact radius guess for a load (first contact)
     grid: tuple[np.ndarray, np.ndarray] | None = None  # grid node of every dof (nested-dissection LU)
     condensation: object = None  # the elastic far field's condensation, shared by the paths on this model
-    solves: dict = field(default_factory=lambda: {"condensed": 0, "full": 0, "condensations": 0})
+    solves: dict = field(default_factory=lambda: {"condensed": 0, "full": 0, "condensations": 0, "reused": 0})
 
 
 def geometry_of(model, g0_fun: Callable[[np.ndarray], np.ndarray],
@@ -229,7 +229,10 @@ class IncrementalContact:
             g.solves["full"] += 1
             return _solve_constrained(K, rhs, fixed, vals, g.grid)
         g.solves["condensed"] += 1
-        return c.solve(K, rhs, fixed, vals)
+        reused = c.reused
+        out = c.solve(K, rhs, fixed, vals)
+        g.solves["reused"] += c.reused - reused
+        return out
 
     def _condense(self, nonelastic, active, old):
         """(Re)build the condensation for a box holding the plastic zone and the contact; ``False``
