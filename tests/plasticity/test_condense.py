@@ -6,24 +6,30 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 
 from coathertz.case import ContactCase
 from coathertz.fem.mesh import MeshSpec
 from coathertz.fem.plastic.contact import NewtonSettings
 from coathertz.fem.plastic.method import solve_plastic
-from coathertz.materials import Body, Material, Plasticity
+from coathertz.materials import Body, Coating, Material, Plasticity
 
 Y, R = 1e9, 0.01
 STEEL_J2 = Material(200e9, 0.3, plasticity=Plasticity(Y))
 SMALL = MeshSpec(n_a=8, r_fine=2.0, t_fine=1.0, growth=1.5, L=15.0)
 
 
-def test_condensed_path_equals_whole_tangent_path():
-    """Approach control to 5 um (delta/delta_c ~ 3.8) and unloading: the plastic zone outgrows the
-    first box, so the condensation is rebuilt at least once. Both paths take the same Newton
-    iterations; every curve agrees to 1e-9 relative (the increments converge to rtol = 1e-9 and the
-    two linear solves differ by round-off only: measured 3e-14 for W on this path)."""
-    case = ContactCase(Body.rigid_sphere(R), Body.half_space(STEEL_J2), 1.0)
+@pytest.mark.parametrize("coated", [False, True])
+def test_condensed_path_equals_whole_tangent_path(coated):
+    """Approach control to 5 um (delta/delta_c ~ 3.8) and unloading, on yielding steel and on the
+    same steel under an elastic 400 GPa coating 40 um thick (two regions, two laws): the plastic
+    zone outgrows the first box, so the condensation is rebuilt at least once. Both paths take the
+    same Newton iterations; every curve agrees to 1e-9 relative (the increments converge to
+    rtol = 1e-9 and the two linear solves differ by round-off only: measured 3e-14 for W on the
+    uncoated path)."""
+    body = (Body.half_space(STEEL_J2, Coating(Material(400e9, 0.25), 40e-6)) if coated
+            else Body.half_space(STEEL_J2))
+    case = ContactCase(Body.rigid_sphere(R), body, 1.0)
     runs = [solve_plastic(case, mesh=SMALL, n_steps=3, delta_max=5e-6, unload=True,
                           newton=NewtonSettings(condense=c)) for c in (False, True)]
     full, cond = runs
