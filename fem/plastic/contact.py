@@ -39,7 +39,9 @@ unloading (20 um, 95 iterations) 15.0 s against 32.6 s; the same loads to 1e-14.
 CPU of the approach path: the box factorisations 5.3 s, the solves with the far field's factor and
 the box's slicing 3.6 s, the assembly 3.8 s, the condensations 0.9 s. Tried and dropped:
 starting each increment from the displacement extrapolated from the last (88 -> 92 iterations on
-the coarse approach path).
+the coarse approach path); its first iteration with the last increment's converged tangent instead
+of the committed state's (elastic on the yield surface): coarse mesh, approach path 88 -> 84, load
+path 68 -> 69, approach to delta/delta_c = 200 (E/Y = 1000, 20 steps) 185 -> 198.
 
 Increments: every target of the load path is reached by sub-increments; a failed Newton loop
 (``max_newton`` iterations, or a diverging residual) halves the sub-increment, a converged one
