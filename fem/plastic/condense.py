@@ -45,9 +45,13 @@ import scipy.sparse.linalg as spla
 from coathertz.fem.ordering import nested_dissection
 from coathertz.fem.solvers import CondensedFactor
 
-#: A rebuilt box reaches this factor beyond the plastic zone and contact it must hold.
+#: A rebuilt box reaches this factor beyond the plastic zone and contact it must hold. Measured on
+#: the README's approach path with unloading (default mesh, CPU): 1.25, 1.5 and 2.0 give 18.2,
+#: 18.1 and 20.9 s (5, 4 and 3 condensations).
 BOX_GROWTH = 1.5
-#: No condensation when the box would hold more than this fraction of the elements.
+#: No condensation when the box would hold more than this fraction of the elements. Approach to
+#: delta/delta_c = 200 (E/Y = 1000, default mesh, 20 steps): 54.9 s CPU with 0.6 (58 of 197
+#: solves of the whole tangent), 45.1 s with 0.9 (none).
 MAX_FRACTION = 0.9
 
 
