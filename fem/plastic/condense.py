@@ -18,7 +18,8 @@ the Newton system reduces exactly (block Gauss elimination, e.g. Saad 2003, Sect
 
 ``A = K^E`` on ``e \cup g`` is factorised once, ordered by nested dissection with ``g`` last and
 without pivoting (:class:`coathertz.fem.solvers.CondensedFactor`), which gives ``S^E`` as the
-trailing block of its LU. Both ``t`` and ``u_e`` come from full solves with ``A``:
+trailing block of its LU. Both ``t`` and ``u_e`` come from full solves with ``A`` (``t`` not for a
+zero ``b_e`` nor for one equal to the last solve's):
 ``A [x; y] = [b_e; 0]`` gives ``t = -S^E y``, and ``A [x; y] = [b_e; t + S^E u_g]`` gives
 ``y = u_g``, ``x = u_e``. Per Newton iteration only the sparse ``n`` block (plus the dense
 ``g x g`` block, ordered last) is factorised, and not even that when the tangent and the
@@ -121,6 +122,28 @@ class ElasticCondensation:
         self.Di, self.Dj = np.nonzero(np.ones_like(self.D, dtype=bool))
         self._last = None  # (order, tangent data, factors) of the last box factorisation
         self.reused = 0  # box factorisations reused (the same tangent and active set)
+        self._tmemo: list = []  # (b_e, t) of the last solve's right-hand sides
+
+    def _t(self, be: np.ndarray) -> np.ndarray:
+        """``t = K_ge K_ee^-1 b_e`` for each column of ``be``: 0 for a zero column (load control's
+        second right-hand side), the last call's value for an identical one (approach control's far
+        field of a unit load, the same at every iteration), else one solve with ``A``."""
+        m = be.shape[1]
+        t = np.zeros((self.ng, m))
+        todo = []
+        for k in range(m):
+            if not be[:, k].any():
+                continue
+            hit = next((tc for bc, tc in self._tmemo if np.array_equal(bc, be[:, k])), None)
+            if hit is None:
+                todo.append(k)
+            else:
+                t[:, k] = hit
+        if todo:
+            y0 = self.factor.solve(np.vstack([be[:, todo], np.zeros((self.ng, len(todo)))]))[self.ne:]
+            t[:, todo] = -self.S @ y0
+        self._tmemo = [(be[:, k].copy(), t[:, k].copy()) for k in range(m) if be[:, k].any()]
+        return t
 
     def valid(self, nonelastic: np.ndarray, active_dofs: np.ndarray) -> bool:
         """The split is exact: the elements with a changed tangent lie in the box and the active
@@ -154,8 +177,7 @@ class ElasticCondensation:
             lu = spla.splu(M, permc_spec="NATURAL", diag_pivot_thresh=0.01, options={"SymmetricMode": True})
             self._last = (order, K.data.copy(), lu)
         be = Bm[self.e]
-        y0 = self.factor.solve(np.vstack([be, np.zeros((self.ng, m))]))[self.ne:]
-        t = -self.S @ y0
+        t = self._t(be)
         bn = Bm[order]
         bn[off:] -= t
         un = lu.solve(bn)
