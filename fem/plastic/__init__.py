@@ -12,6 +12,9 @@ Modules, one job each:
 :mod:`~coathertz.fem.plastic.contact`
     The incremental contact + plasticity Newton loop: load or approach control, adaptive
     sub-increments with cutbacks, unloading.
+:mod:`~coathertz.fem.plastic.condense`
+    Static condensation of the elastic far field: factorised once, so that each Newton
+    iteration factorises only a box around the contact and the plastic zone (exact).
 :mod:`~coathertz.fem.plastic.method`
     The load path as a user runs it: mesh and contact zone sized from the path's largest load or
     approach and grown when the contact nears the zone's edge, the curves, final fields, JSON /

@@ -18,7 +18,8 @@ with :class:`coathertz.fem.plastic.contact.IncrementalContact`:
 Small strain and the half-space
 idealisation are assumed: a/R > 0.1 is warned about and recorded.
 
-Outputs (:class:`PlasticResult`): per increment the load, approach, contact radius, maximum and
+Outputs (:class:`PlasticResult`): per increment the load, approach, contact radius (and the number
+of elements across it, ``elements_across_a``, counted along the surface from the axis), maximum and
 mean pressure, pressure profile, Newton iterations and cutbacks, the largest equivalent plastic
 strain and the plastic-zone extent; at the end the residual depth and surface profile, the
 residual stresses along the axis and both sides of the interface (:func:`~coathertz.fem.post.stress_report`
@@ -108,7 +109,7 @@ CURVE_UNITS: dict[str, str] = {
     "W": "N", "delta": "m", "a": "m", "p_max": "Pa", "p_mean": "Pa", "newton_iterations": "",
     "cutbacks": "", "ep_max": "", "zone_r": "m", "zone_depth": "m", "phase": "", "residual_depth": "m",
     "cycle": "", "a_lo": "m", "a_hi": "m", "a_err": "m", "edge_exponent": "", "p_mean_lo": "Pa",
-    "p_mean_hi": "Pa", "p_mean_err": "Pa",
+    "p_mean_hi": "Pa", "p_mean_err": "Pa", "elements_across_a": "",
 }
 
 
@@ -375,6 +376,8 @@ def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_sn
     meta_targets = {"loading": list(up), "onset_target": onset}
     weights = model.weights_all[geom.cand]
     r_zone = float(geom.r[-1])
+    # element edges on the surface: the number of elements across a radius, counted from the axis
+    r_edges = np.unique(np.round(lm.mesh.p[0][np.abs(lm.mesh.p[1]) <= 1e-9 * a_ref], 15))
     top = model.top
     r_top = model.r_dof[top]
 
@@ -406,6 +409,7 @@ def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_sn
         curves["W"].append(inc.W)
         curves["delta"].append(eq.delta_factor * delta)
         curves["a"].append(a)
+        curves["elements_across_a"].append(float(np.interp(a, r_edges, np.arange(len(r_edges)))))
         curves["p_max"].append(float(p.max()) if p.size else 0.0)
         curves["p_mean"].append(inc.W / (math.pi * a**2) if a > 0 else 0.0)
         curves["p_mean_err"].append(2.0 * curves["p_mean"][-1] * edge["a_err"] / a if a > 0 else 0.0)
@@ -465,6 +469,7 @@ def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_sn
         "bbar": bbar,
         "n_steps": n_steps, "unload": bool(unload), "reload": bool(reload), "control": control,
         "increments": len(increments), "factorisations": int(factorisations),
+        "linear_solves": dict(geom.solves),  # condensed / whole-tangent solves, condensations built
         "wall_time": sum(rec_.wall_time for rec_ in records), "R_model": R, "delta_factor": eq.delta_factor,
         "targets": meta_targets,
         "newton_iterations_total": int(sum(curves["newton_iterations"])),

@@ -122,3 +122,17 @@ def test_approach_control_matches_load_control():
     j = pl_app.curves["phase"].index("unloading") - 1
     assert abs(pl_app.curves["W"][j] / pl_load.curves["W"][i] - 1) < 0.01
     assert pl_app.curves["W"][-1] == 0.0  # contact lost before delta = 0 (permanent dent)
+
+
+def test_elements_across_the_contact_radius_per_increment(cycle):
+    """``elements_across_a``: the surface elements from the axis to ``a`` (fractions counted), the
+    covered share of every surface element summed; 0 without contact."""
+    c = cycle.curves
+    mesh = cycle.model.lm.mesh
+    pr, pz = mesh.p[0][mesh.t], mesh.p[1][mesh.t]  # [4, nel]
+    top = np.sum(np.abs(pz) < 1e-12, axis=0) == 2  # elements with an edge on the surface
+    r0, r1 = pr[:, top].min(0), pr[:, top].max(0)
+    for a, n in zip(c["a"], c["elements_across_a"], strict=True):
+        covered = float(np.clip((a - r0) / (r1 - r0), 0.0, 1.0).sum())
+        assert abs(n - covered) < 1e-9 * max(covered, 1.0), (a, n, covered)
+    assert max(c["elements_across_a"]) > 4 and min(c["elements_across_a"]) == 0.0
