@@ -74,11 +74,11 @@ def run_plastic(case: ContactCase, args: argparse.Namespace) -> int:
           f"{m['increments']} increments, {m['newton_iterations_total']} Newton iterations, "
           f"{m['wall_time']:.1f} s")
     print(f"{'phase':10s} {'W [N]':>10s} {'delta [um]':>11s} {'a [um]':>9s} {'p_max [MPa]':>12s} "
-          f"{'p_mean [MPa]':>13s} {'ep_max':>9s} {'Newton':>6s}")
+          f"{'p_mean [MPa]':>13s} {'ep_max':>9s} {'Newton':>6s} {'elem/a':>6s}")
     for k in range(len(c["W"])):
         print(f"{c['phase'][k]:10s} {c['W'][k]:10.4g} {c['delta'][k] * 1e6:11.5g} {c['a'][k] * 1e6:9.4g} "
               f"{c['p_max'][k] / 1e6:12.5g} {c['p_mean'][k] / 1e6:13.5g} {c['ep_max'][k]:9.3g} "
-              f"{c['newton_iterations'][k]:6d}")
+              f"{c['newton_iterations'][k]:6d} {c['elements_across_a'][k]:6.1f}")
     z = res.final["plastic_zone"]
     if z["plastic_points"]:
         print(f"plastic zone: max ep = {z['ep_max']:.3g}, r <= {z['zone_r'] * 1e6:.4g} um, "
