@@ -65,6 +65,8 @@ T_RANGE = (-2.0, 2.0)
 MIN_LOADED = 2
 #: Range of the pressure exponent ``n``.
 N_RANGE = (0.0, 1.5)
+#: Start points of the fit refined (the best of the coarse grid); the deepest minimum is kept.
+N_STARTS = 3
 #: Gauss-Legendre points per element (the element holding the edge uses a graded rule).
 _GX, _GW = np.polynomial.legendre.leggauss(10)
 
@@ -128,9 +130,13 @@ def _fit(r: np.ndarray, lam: np.ndarray, last: int) -> tuple[float, float, float
 
     # start points between the nodes (at a node the loads' derivative in a jumps)
     grid = [(t, n) for t in np.linspace(t_lo + 0.25, t_hi - 0.25, 8) for n in np.linspace(*N_RANGE, 4)]
-    x0 = min(grid, key=lambda x: float(np.linalg.norm(residual(np.array(x)))))
-    sol = least_squares(residual, np.array(x0), bounds=([t_lo, N_RANGE[0]], [t_hi, N_RANGE[1]]),
-                        diff_step=1e-7, xtol=1e-12, ftol=1e-12, gtol=1e-12)
+    # the objective can have several local minima of nearly equal depth: a single start from the
+    # grid's best point would follow whichever start wins by round-off, so the best N_STARTS grid
+    # points are each refined and the deepest minimum kept
+    ranked = sorted(grid, key=lambda x: float(np.linalg.norm(residual(np.array(x)))))
+    sol = min((least_squares(residual, np.array(x0), bounds=([t_lo, N_RANGE[0]], [t_hi, N_RANGE[1]]),
+                             diff_step=1e-7, xtol=1e-12, ftol=1e-12, gtol=1e-12)
+               for x0 in ranked[:N_STARTS]), key=lambda so: float(so.cost))
     sol.fun = float(np.linalg.norm(sol.fun))
     # standard error of a: linearised least squares in (c, t, n) with the residual's variance
     f0, c0 = model(sol.x)

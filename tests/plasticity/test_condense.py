@@ -21,26 +21,38 @@ SMALL = MeshSpec(n_a=8, r_fine=2.0, t_fine=1.0, growth=1.5, L=15.0)
 
 @pytest.mark.parametrize("coated", [False, True])
 def test_condensed_path_equals_whole_tangent_path(coated):
-    """Approach control to 5 um (delta/delta_c ~ 3.8) and unloading, on yielding steel and on the
-    same steel under an elastic 400 GPa coating 40 um thick (two regions, two laws): the plastic
-    zone outgrows the first box, so the condensation is rebuilt at least once. Both paths take the
-    same Newton iterations; every curve agrees to 1e-9 relative (the increments converge to
-    rtol = 1e-9 and the two linear solves differ by round-off only: measured 3e-14 for W on the
-    uncoated path)."""
+    """Approach control to 8 um (delta/delta_c ~ 6) in 6 increments and unloading, on yielding
+    steel and on the same steel under an elastic 400 GPa coating 40 um thick (two regions, two
+    laws): the plastic zone outgrows the first box, so the condensation is rebuilt at least once.
+    Both paths take about the same number of Newton iterations; every curve agrees to 1e-9
+    relative (the increments converge to rtol = 1e-9 and the two linear solves differ by round-off
+    only: measured 3e-14 for W on the uncoated path), the fitted contact radius to 1e-6."""
     body = (Body.half_space(STEEL_J2, Coating(Material(400e9, 0.25), 40e-6)) if coated
             else Body.half_space(STEEL_J2))
     case = ContactCase(Body.rigid_sphere(R), body, 1.0)
-    runs = [solve_plastic(case, mesh=SMALL, n_steps=3, delta_max=5e-6, unload=True,
+    runs = [solve_plastic(case, mesh=SMALL, n_steps=6, delta_max=8e-6, unload=True,
                           newton=NewtonSettings(condense=c)) for c in (False, True)]
     full, cond = runs
     assert full.meta["linear_solves"]["condensed"] == 0
     ls = cond.meta["linear_solves"]
     assert ls["condensed"] > 0.8 * (ls["condensed"] + ls["full"]), ls
     assert ls["condensations"] >= 2, ls  # the box grew with the plastic zone
-    assert full.curves["newton_iterations"] == cond.curves["newton_iterations"]
+    # iteration counts are not a round-off invariant: where the active set changes within an
+    # increment one path may chatter once more (measured: 15 against 8 iterations in one
+    # increment of the coated path); the totals stay close
+    n_full, n_cond = sum(full.curves["newton_iterations"]), sum(cond.curves["newton_iterations"])
+    assert abs(n_full - n_cond) <= 0.25 * n_full, (full.curves["newton_iterations"],
+                                                    cond.curves["newton_iterations"])
     assert max(cond.curves["ep_max"]) > 1e-3
     for k in ("W", "delta", "ep_max", "zone_depth"):
         a, b = np.array(full.curves[k], float), np.array(cond.curves[k], float)
         err = float(np.max(np.abs(a - b)) / np.max(np.abs(a)))
         assert err < 1e-9, f"{k}: condensed vs whole-tangent path differ by {err:.2e} (relative)"
+    # the contact radius is a least-squares fit on the nodal forces: its minima can be nearly
+    # equally deep, so it must not amplify round-off (a single-start fit flipped between two minima
+    # here, 1.0 % = 1.2 a_err apart; with the best three starts refined: 9e-10 measured)
+    a, b = np.array(full.curves["a"], float), np.array(cond.curves["a"], float)
+    ok = np.isfinite(a) & (a > 0)
+    err = float(np.max(np.abs(a - b)[ok] / a[ok]))
+    assert err < 1e-6, f"a: condensed vs whole-tangent path differ by {err:.2e} (relative)"
     assert math.isclose(full.final["residual_depth"], cond.final["residual_depth"], rel_tol=1e-9, abs_tol=0)
