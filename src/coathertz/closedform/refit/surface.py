@@ -169,48 +169,100 @@ def evaluate_shared(surfaces: Sequence[Surface], X: np.ndarray) -> list[np.ndarr
     finishes. The product's inner dimension is the number of ``rest`` indices (hundreds for the
     tensor surfaces of the corrected form) and its output only ``(surfaces x degree) x chunk``,
     so it runs at matrix-product speed from cache; chunks of ``CHUNK`` points keep ``W`` in cache.
+    The matrix of coefficients and the index maps are built once per set of surfaces
+    (:class:`_Plan`); tables, ``W`` and the product are written into buffers reused chunk by
+    chunk (no temporaries: the evaluation rate is that of the matrix product plus a few
+    element-wise passes, ``tests/benchmarks/bench_refit.py``).
     """
     first = surfaces[0]
     X = np.asarray(X, dtype=float)
     if any((s.variables, s.lo, s.hi) != (first.variables, first.lo, first.hi) for s in surfaces[1:]):
         return [s(X) for s in surfaces]
-    d, n = X.shape
-    rest = tuple(sorted({r for s in surfaces for r in s._layout[0]}))
-    where = {r: k for k, r in enumerate(rest)}
-    n0 = max(s.degrees[0] for s in surfaces) + 1
-    big = np.zeros((len(surfaces) * n0, len(rest)))
-    for m, s in enumerate(surfaces):
-        rs, C = s._layout
-        big[m * n0 : m * n0 + C.shape[0], [where[r] for r in rs]] = C
-    degs = tuple(max(s.degrees[v] for s in surfaces) for v in range(d))
-    pick = None  # rows of the full tensor that are rest indices (None: all of them, in order)
-    if d > 1:
-        flat = np.ravel_multi_index(np.array(rest).T, tuple(k + 1 for k in degs[1:]))
-        if not np.array_equal(flat, np.arange(np.prod([k + 1 for k in degs[1:]]))):
-            pick = flat
-    outs = [np.empty(n) for _ in surfaces]
-
-    def block(t0: int) -> None:  # tables for many points at once (few Python steps) ...
-        S_all = first.scaled(X[:, t0 : t0 + TABLE_CHUNK])
-        tabs_all = [chebyshev_table(S_all[v], degs[v]) for v in range(d)]
-        for c0 in range(0, S_all.shape[1], CHUNK):  # ... the product in cache-sized pieces
-            _product(big, [t[:, c0 : c0 + CHUNK] for t in tabs_all], pick, n0, outs, t0 + c0)
-
-    for t0 in range(0, n, TABLE_CHUNK):
-        block(t0)
-    return outs
+    return _plan(tuple(surfaces)).evaluate(X)
 
 
-def _product(big: np.ndarray, tabs: list[np.ndarray], pick: np.ndarray | None, n0: int,
-             outs: list[np.ndarray], s0: int) -> None:
-    """One cache-sized chunk of :func:`evaluate_shared`: ``tabs`` are the Chebyshev tables of
-    its points, the values go to ``outs[m][s0 : s0 + chunk]``."""
-    T0, n = tabs[0], tabs[0].shape[1]
-    W = tabs[1] if len(tabs) > 1 else np.ones((1, n))
-    for T in tabs[2:]:  # the full tensor of the tables of the variables after the first
-        W = (W[:, None, :] * T[None, :, :]).reshape(-1, n)
-    if pick is not None:
-        W = W[pick]
-    B = (big @ W).reshape(len(outs), n0, n)
-    for m, out in enumerate(outs):
-        out[s0 : s0 + n] = np.einsum("in,in->n", B[m], T0)
+_PLANS: dict[tuple[int, ...], tuple[tuple[Surface, ...], _Plan]] = {}
+
+
+def _plan(surfaces: tuple[Surface, ...]) -> _Plan:
+    """The cached :class:`_Plan` of ``surfaces`` (keyed by identity; the surfaces are kept alive
+    with it, so an identity is never reused while cached)."""
+    key = tuple(id(s) for s in surfaces)
+    hit = _PLANS.get(key)
+    if hit is None or any(a is not b for a, b in zip(hit[0], surfaces, strict=True)):
+        if len(_PLANS) > 64:
+            _PLANS.clear()
+        hit = (surfaces, _Plan(surfaces))
+        _PLANS[key] = hit
+    return hit[1]
+
+
+class _Plan:
+    """The evaluation of several surfaces over the same variables (:func:`evaluate_shared`):
+    ``big[m n0 + i, r]`` is surface m's coefficient of the term ``(i, *rest[r])``; ``pick`` the rows
+    of the full tensor of the tables after the first that are ``rest`` indices (None: all of them,
+    in order)."""
+
+    def __init__(self, surfaces: tuple[Surface, ...]) -> None:
+        first = surfaces[0]
+        d = len(first.variables)
+        rest = tuple(sorted({r for s in surfaces for r in s._layout[0]}))
+        where = {r: k for k, r in enumerate(rest)}
+        n0 = max(s.degrees[0] for s in surfaces) + 1
+        big = np.zeros((len(surfaces) * n0, len(rest)))
+        for m, s in enumerate(surfaces):
+            rs, C = s._layout
+            big[m * n0 : m * n0 + C.shape[0], [where[r] for r in rs]] = C
+        self.degs = tuple(max(s.degrees[v] for s in surfaces) for v in range(d))
+        self.pick = None
+        if d > 1:
+            flat = np.ravel_multi_index(np.array(rest).T, tuple(k + 1 for k in self.degs[1:]))
+            if not np.array_equal(flat, np.arange(np.prod([k + 1 for k in self.degs[1:]]))):
+                self.pick = flat
+        self.big, self.n0, self.count, self.d = big, n0, len(surfaces), d
+        self.lo = np.asarray(first.lo)[:, None]
+        self.hi = np.asarray(first.hi)[:, None]
+        self.full = int(np.prod([k + 1 for k in self.degs[1:]]))  # rows of the full tensor W
+
+    def evaluate(self, X: np.ndarray) -> list[np.ndarray]:
+        d, n = X.shape
+        out = np.empty((self.count, n))
+        for t0 in range(0, n, TABLE_CHUNK):
+            Xb = X[:, t0 : t0 + TABLE_CHUNK]
+            S = (2.0 * np.clip(Xb, self.lo, self.hi) - (self.lo + self.hi)) / (self.hi - self.lo)
+            tabs = [_table(S[v], self.degs[v]) for v in range(d)]
+            for c0 in range(0, S.shape[1], CHUNK):
+                c1 = min(c0 + CHUNK, S.shape[1])
+                self._product([t[:, c0:c1] for t in tabs], out[:, t0 + c0 : t0 + c1])
+        return list(out)
+
+    def _product(self, tabs: list[np.ndarray], out: np.ndarray) -> None:
+        """One cache-sized chunk: ``tabs`` are the Chebyshev tables of its points; the values go
+        to ``out`` (surfaces x points)."""
+        T0, n = tabs[0], tabs[0].shape[1]
+        if len(tabs) == 1:
+            W = np.ones((1, n))
+        else:
+            W = tabs[1]
+            for T in tabs[2:]:  # the full tensor of the tables of the variables after the first
+                nxt = np.empty((W.shape[0] * T.shape[0], n))
+                np.multiply(W[:, None, :], T[None, :, :], out=nxt.reshape(W.shape[0], T.shape[0], n))
+                W = nxt
+            if self.pick is not None:
+                W = W[self.pick]
+        B = np.matmul(self.big, W).reshape(self.count, self.n0, n)
+        np.einsum("min,in->mn", B, T0, out=out)
+
+
+def _table(s: np.ndarray, degree: int) -> np.ndarray:
+    """:func:`chebyshev_table` without temporaries (the same operations, so the same values)."""
+    out = np.empty((degree + 1, *s.shape))
+    out[0] = 1.0
+    if degree >= 1:
+        out[1] = s
+    if degree >= 2:
+        s2 = 2.0 * s
+        for k in range(2, degree + 1):
+            np.multiply(s2, out[k - 1], out=out[k])
+            out[k] -= out[k - 2]
+    return out
