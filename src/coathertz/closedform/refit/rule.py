@@ -201,13 +201,21 @@ class RefitRule:
         """``(E, H, nu_c, nu_s) -> bars`` of the best form of ``config``, in one block."""
         if self.best_form(config) != "corrected":
             return self.model(config).bars
-        form = self._corrected[config]  # type: ignore[attr-defined]
-        model = self.model(config)
+        log_bars = self._log_bars_function(config)
 
         def bars(E, H, nu_c, nu_s):
-            return {q: np.exp(v) for q, v in form.log_bars(E, H, nu_c, nu_s, model).items()}
+            return {q: np.exp(v) for q, v in log_bars(E, H, nu_c, nu_s).items()}
 
         return bars
+
+    def _log_bars_function(self, config: str):
+        """``(E, H, nu_c, nu_s) -> ln bars`` of the best form of ``config``, in one block."""
+        if self.best_form(config) != "corrected":
+            bars = self.model(config).bars
+            return lambda E, H, nu_c, nu_s: {q: np.log(v) for q, v in bars(E, H, nu_c, nu_s).items()}
+        form = self._corrected[config]  # type: ignore[attr-defined]
+        model = self.model(config)
+        return lambda E, H, nu_c, nu_s: form.log_bars(E, H, nu_c, nu_s, model)
 
     def ellipse_bars(self, E, H, rho, nu_c=0.3, nu_s=0.3) -> dict[str, np.ndarray]:
         """Bars of r_a, r_b, delta, p of a rigid indenter on a coated half-space with the relative
@@ -235,10 +243,10 @@ class RefitRule:
         form = self._indenter  # type: ignore[attr-defined]
         if form is None:
             raise CoatHertzError(f"the refit data {self.source!r} has no elastic-indenter form")
-        rigid = self._bars_function("elastic")
+        rigid = self._log_bars_function("elastic")
 
         def bars(E, H, gamma, nu_c, nu_s):
-            return {q: np.exp(v) for q, v in form.log_bars(rigid, E, H, nu_c, nu_s, gamma).items()}
+            return {q: np.exp(v) for q, v in form.log_bars(rigid, E, H, nu_c, nu_s, gamma, logs=True).items()}
 
         return in_blocks(bars, E, H, gamma, nu_c, nu_s)
 
