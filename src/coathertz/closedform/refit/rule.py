@@ -467,36 +467,34 @@ def _predict_indenter_ellipse(case, pred, rule: RefitRule, params: dict, warn: b
 
 #: Points per core below which :meth:`RefitRule.bars` evaluates in one block (threads cost more).
 PARALLEL_MIN = 65536
-#: Points per call of the form inside a block: each block is evaluated in pieces of this size, so
-#: that the form's element-wise passes run from cache rather than memory (measured on the elastic
-#: indenter, one core: 3.6 us per case in one piece of 2e5 points, 3.1 in pieces of 32768).
-PIECE = 16384
+#: Points per call of the form: large inputs are evaluated in pieces of this size, so that the
+#: form's element-wise passes run from cache rather than memory, and the threads take the pieces
+#: from one queue (a thread held up by other work on the machine delays the end by a piece, not
+#: by half of the input).
+PIECE = 32768
 
 
 def in_blocks(fn, *args) -> dict[str, np.ndarray]:
-    """``fn(*args)`` (returning flattened arrays per key) on the broadcast inputs, in one block per
-    core when there are at least :data:`PARALLEL_MIN` points per core, each block in pieces of
-    :data:`PIECE` points; ``None`` arguments are passed on as ``None``. The blocks run in threads
-    with single-threaded BLAS: numpy releases the GIL in the element-wise work and the matrix
-    products, so every core is used without oversubscription, and the values are those of the
-    one-block evaluation."""
+    """``fn(*args)`` (returning flattened arrays per key) on the broadcast inputs, in pieces of
+    :data:`PIECE` points spread over one thread per core when there are at least
+    :data:`PARALLEL_MIN` points per core; ``None`` arguments are passed on as ``None``. The
+    threads run with single-threaded BLAS: numpy releases the GIL in the element-wise work and
+    the matrix products, so every core is used without oversubscription, and the values are those
+    of the one-block evaluation."""
     arrays = np.broadcast_arrays(*(np.asarray(np.nan if v is None else v, dtype=float) for v in args))
     n = arrays[0].size
-    if n <= PIECE:
-        return fn(*args)
     threads = max(1, min(os.cpu_count() or 1, n // PARALLEL_MIN))
+    if threads < 2 and n <= PIECE:
+        return fn(*args)
     flat = [a.ravel() for a in arrays]
-    cuts = np.linspace(0, n, threads + 1).astype(int)
 
-    def piece(a: int, b: int) -> dict[str, np.ndarray]:
+    def piece(a: int) -> dict[str, np.ndarray]:
+        b = min(a + PIECE, n)
         return fn(*(None if v is None else f[a:b] for v, f in zip(args, flat, strict=True)))
 
-    def block(k: int) -> list[dict[str, np.ndarray]]:
-        return [piece(a, min(a + PIECE, cuts[k + 1])) for a in range(cuts[k], cuts[k + 1], PIECE)]
-
     if threads < 2:
-        parts = block(0)
+        parts = [piece(a) for a in range(0, n, PIECE)]
     else:
         with blas_threads(1), ThreadPoolExecutor(threads) as pool:
-            parts = [p for ps in pool.map(block, range(threads)) for p in ps]
+            parts = list(pool.map(piece, range(0, n, PIECE)))
     return {q: np.concatenate([p[q] for p in parts]) for q in parts[0]}

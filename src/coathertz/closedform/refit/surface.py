@@ -21,7 +21,9 @@ import numpy as np
 
 from coathertz.errors import CoatHertzError
 
-CHUNK = 256  # points per matrix product (W stays in cache: 196 x 256 x 8 B = 400 kB)
+CHUNK = 256  # fewest points per matrix product
+CHUNK_MAX = 4096  # most points per matrix product
+W_DOUBLES = 49152  # W of one chunk at most about this many values (384 kB: in one core's L2)
 TABLE_CHUNK = 16384  # points per set of Chebyshev tables (their buffers are kept per thread)
 
 
@@ -210,7 +212,9 @@ class _Plan:
         rest = tuple(sorted({r for s in surfaces for r in s._layout[0]}))
         where = {r: k for k, r in enumerate(rest)}
         n0 = max(s.degrees[0] for s in surfaces) + 1
-        big = np.zeros((len(surfaces) * n0, len(rest)))
+        # rows padded with zeros to a multiple of 4 (the matrix product's register block: 63 -> 64
+        # rows take 8 % less time on this machine's OpenBLAS, measured)
+        big = np.zeros((-(-len(surfaces) * n0 // 4) * 4, len(rest)))
         for m, s in enumerate(surfaces):
             rs, C = s._layout
             big[m * n0 : m * n0 + C.shape[0], [where[r] for r in rs]] = C
@@ -238,7 +242,7 @@ class _Plan:
     def evaluate(self, X: np.ndarray) -> list[np.ndarray]:
         d, n = X.shape
         out = np.empty((self.count, n))
-        chunk = min(CHUNK, n)
+        chunk = min(max(CHUNK, min(CHUNK_MAX, W_DOUBLES // self.big.shape[1])), n)
         block = min(TABLE_CHUNK, n)
         rows = np.cumprod([k + 1 for k in self.degs[1:]])
         stages = [self._buffer(f"stage{k}", int(r) * chunk) for k, r in enumerate(rows[1:])]
@@ -275,7 +279,7 @@ class _Plan:
             if self.pick is not None:
                 W = W[self.pick]
         B = np.matmul(self.big, W, out=bbuf[: self.big.shape[0] * n].reshape(self.big.shape[0], n))
-        np.einsum("min,in->mn", B.reshape(self.count, self.n0, n), T0, out=out)
+        np.einsum("min,in->mn", B[: self.count * self.n0].reshape(self.count, self.n0, n), T0, out=out)
 
 
 def _table(s: np.ndarray, degree: int, out: np.ndarray) -> np.ndarray:
