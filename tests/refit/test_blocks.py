@@ -13,8 +13,9 @@ from coathertz.closedform.refit import rule as R
 
 @pytest.fixture
 def small_blocks(monkeypatch):
-    monkeypatch.setattr(R, "PARALLEL_MIN", 1000)  # force blocks on a few thousand points
-    monkeypatch.setattr(R.os, "cpu_count", lambda: 3)  # three uneven blocks even on one core
+    monkeypatch.setattr(R, "PARALLEL_MIN", 1000)  # force threads on a few thousand points
+    monkeypatch.setattr(R.os, "cpu_count", lambda: 3)  # three threads even on one core
+    monkeypatch.setattr(R, "PIECE", 700)  # eight uneven pieces (each thread's buffers reused)
 
 
 def _inputs(n=5003):
