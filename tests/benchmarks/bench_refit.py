@@ -17,16 +17,29 @@ per chunk of 1024 points; no pieces inside a block; the elastic indenter through
 form's bars and ``ln``) and prints the ratios. The values agree to 1.3e-15 relative (measured
 on 1e5 points over and beyond the box, gamma = 1 and the box's edges included).
 
-Measured (2-core AMD EPYC, numpy 2 / OpenBLAS 0.3.31, 1e6 cases; the machine was shared, load
-5-7 on 2 cores, so the absolute rates are low and the ratios are the figures to quote):
-single core, 16384-case pieces, CPU time per case, old -> new: elastic indenter 3.76 -> 2.79 us
-(1.35 x), rigid indenter on an elastic substrate 2.33 -> 1.64 us (1.42 x), rigid substrate
-1.13 -> 1.13 us (1.0 x). The idle rates before (issue 21's note): elastic indenter 4.9e5/s,
-rigid corrected elastic 1.07e6/s, rigid substrate 1.49e6/s, ellipse 8.2e5/s. The elastic
-indenter's floor is its matrix products: 3 x (4116 + 3575) coefficients, 46,000 flops a case
-at the 30-34 GFLOP/s one core of this machine reaches on these shapes, i.e. 1.4-1.5 us a case
-and core, at most about 1.4e6 cases/s on 2 cores with nothing else; measured, the products and
-the tensors they read take about 70 % of the time.
+Measured 2026-11-27 on this project's 2-core AMD EPYC (2.45 GHz, AVX2; numpy 2.4 with OpenBLAS
+0.3.31), while 4 other jobs ran on the same 2 cores (load 5-7): the wall-clock rates were then
+2-6 times below the idle ones, so the CPU time per case and the ratios to the old evaluation in
+the same run are the figures to quote. ``--n 1000000 --repeat 3 --reference``: CPU time per case
+before / after: elastic indenter x 1.25 (3.06 us after), corrected rigid indenter on an elastic
+substrate x 1.01 (1.78 us), on a rigid substrate x 1.16 (1.17 us), ellipse x 0.98 (2.42 us), one
+alpha x 0.95 (elastic) and x 1.60 (rigid). One core, pieces of 16384 cases, best of 30 runs
+interleaved with the old code (a copy of the old package in the same process): elastic indenter
+3.86 -> 2.98 us (x 1.30), corrected elastic substrate 2.42 -> 1.77 us (x 1.37), corrected rigid
+substrate 1.21 -> 1.07 us (x 1.13). The idle rates before (issue 21's note): elastic indenter
+4.9e5/s, corrected elastic substrate 1.07e6/s, corrected rigid substrate 1.49e6/s, ellipse
+8.2e5/s; the idle rates after were not measured (the machine was never idle).
+
+Where the elastic indenter's time goes (one core, 16384 cases, busy machine, 3.9 us a case):
+the two tensor surfaces' matrix products (the correction D_q, 64 x 196 coefficients, and the
+base form's global surfaces, 76 x 143) 1.72 us at 27 GFLOP/s; building their ``W`` tensors
+0.62 us; their last contraction 0.32 us; the stiff-coating patch and the ring of p0 (on 22 % and
+5 % of the cases) 0.18 us; everything else (variables, eq 17, exp) about 1 us. The products are
+the floor: 3 x (4116 + 3575) coefficients are 46,000 flops a case, 1.4 us a case and core at the
+32-34 GFLOP/s one core reaches on these shapes (39 at its peak), so 2 cores cannot pass about
+1.4e6 cases/s with everything else free; 1e6/s needs everything else below 0.6 us a case and
+core, which element-wise numpy does not reach (a compiled kernel fusing tables, W and the
+product, or a correction with fewer coefficients, would).
 
 Usage: ``python tests/benchmarks/bench_refit.py [--n 1000000] [--repeat 5] [--reference]``
 """
