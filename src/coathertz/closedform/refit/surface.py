@@ -173,7 +173,8 @@ def evaluate_shared(surfaces: Sequence[Surface], X: np.ndarray) -> list[np.ndarr
     term but the first variable's, which a final weighted sum over the few rows of its table
     finishes. The product's inner dimension is the number of ``rest`` indices (hundreds for the
     tensor surfaces of the corrected form) and its output only ``(surfaces x degree) x chunk``,
-    so it runs at matrix-product speed from cache; chunks of ``CHUNK`` points keep ``W`` in cache.
+    so it runs at matrix-product speed from cache; chunks of ``CHUNK`` to ``CHUNK_MAX`` points
+    keep ``W`` within :data:`W_DOUBLES` values (one core's L2 cache).
     The matrix of coefficients and the index maps are built once per set of surfaces
     (:class:`_Plan`); tables, ``W`` and the product are written into buffers reused chunk by
     chunk (no temporaries: the evaluation rate is that of the matrix product plus a few
