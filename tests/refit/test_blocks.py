@@ -13,8 +13,9 @@ from coathertz.closedform.refit import rule as R
 
 @pytest.fixture
 def small_blocks(monkeypatch):
-    monkeypatch.setattr(R, "PARALLEL_MIN", 1000)  # force blocks on a few thousand points
-    monkeypatch.setattr(R.os, "cpu_count", lambda: 3)  # three uneven blocks even on one core
+    monkeypatch.setattr(R, "PARALLEL_MIN", 1000)  # force threads on a few thousand points
+    monkeypatch.setattr(R.os, "cpu_count", lambda: 3)  # three threads even on one core
+    monkeypatch.setattr(R, "PIECE", 700)  # eight uneven pieces (each thread's buffers reused)
 
 
 def _inputs(n=5003):
@@ -32,10 +33,35 @@ def test_blocks_equal_one_block(small_blocks, monkeypatch):
         for q in want:
             np.testing.assert_allclose(got[q], want[q], rtol=1e-14, atol=0)
     got = rule.ellipse_bars(E, H, rho, nu_c, nu_s)
+    gamma = np.linspace(0.01, 1.0, E.size)
+    got_ind = rule.indenter_bars(E, H, gamma, nu_c, nu_s)
     monkeypatch.setattr(R, "PARALLEL_MIN", 10**9)  # the same call in one block
+    monkeypatch.setattr(R, "PIECE", 10**9)  # ... and in one piece
     one = rule.ellipse_bars(E, H, rho, nu_c, nu_s)
     for q in EL.QUANTITIES:
         np.testing.assert_allclose(got[q], one[q], rtol=1e-14, atol=0)
+    one = rule.indenter_bars(E, H, gamma, nu_c, nu_s)
+    for q in one:
+        np.testing.assert_allclose(got_ind[q], one[q], rtol=1e-14, atol=0)
+
+
+def test_pieces_equal_one_piece(monkeypatch):
+    """Each block evaluated in pieces (:data:`~coathertz.closedform.refit.rule.PIECE`) equals the
+    one-piece evaluation; pieces of 1000 points cut the 5003 inputs unevenly."""
+    rule = load()
+    E, H, nu_c, nu_s, rho = _inputs()
+    gamma = np.linspace(0.01, 1.0, E.size)
+    calls = (lambda: rule.bars("elastic", E, H, nu_c, nu_s),
+             lambda: rule.bars("rigid", None, H, nu_c),
+             lambda: rule.ellipse_bars(E, H, rho, nu_c, nu_s),
+             lambda: rule.indenter_bars(E, H, gamma, nu_c, nu_s))
+    whole = [f() for f in calls]
+    monkeypatch.setattr(R, "PIECE", 1000)
+    for f, want in zip(calls, whole, strict=True):
+        got = f()
+        for q in want:
+            assert got[q].shape == want[q].shape
+            np.testing.assert_allclose(got[q], want[q], rtol=1e-14, atol=0, err_msg=q)
 
 
 def test_ellipse_bars_are_the_circular_bars_times_the_correction():

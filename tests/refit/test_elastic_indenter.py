@@ -92,6 +92,23 @@ def test_gamma_one_is_the_rigid_indenter_rule():
         np.testing.assert_allclose(got[q], ref[q], rtol=1e-12, atol=0, err_msg=q)
 
 
+def test_fast_path_equals_the_bars_path():
+    """The rule's evaluation passes the rigid form's ``ln`` bars straight to the correction
+    (``logs=True``); through the bars and ``ln`` (the form's definition) the values agree to the
+    round-off of one exp/ln pair (measured 4.4e-16 relative on 1e5 points)."""
+    rule = load()
+    rng = np.random.default_rng(11)
+    n = 3000
+    E, H = 10 ** rng.uniform(-1.2, 1.2, n), 10 ** rng.uniform(-3.5, 1.5, n)
+    nu_c, nu_s, gamma = rng.uniform(0, 0.5, n), rng.uniform(0, 0.5, n), rng.uniform(0.001, 1.0, n)
+    gamma[:300] = 1.0
+    form = rule._indenter
+    slow = form.log_bars(rule._bars_function("elastic"), E, H, nu_c, nu_s, gamma)
+    fast = rule.indenter_bars(E, H, gamma, nu_c, nu_s)
+    for q in slow:
+        np.testing.assert_allclose(fast[q], np.exp(slow[q]), rtol=1e-14, atol=0, err_msg=q)
+
+
 def test_exact_limits_of_the_indenter_form():
     """gamma -> 0 (an infinitely compliant indenter: Hertz with the indenter's modulus), H -> 0
     (substrate Hertz) and H -> inf (coating Hertz, the bars (E')^k of the combined kernel's

@@ -70,3 +70,14 @@ def test_full_tensor_surfaces_equal_the_design_matrix(degrees):
     s = Surface(tuple("xyz"[:d]), (-1,) * d, (2,) * d, terms, tuple(c))
     X = np.random.default_rng(5).uniform(-1.5, 2.5, size=(d, 40000))
     np.testing.assert_allclose(s(X), s.design(X) @ c, rtol=1e-12, atol=1e-11)
+
+
+def test_reused_buffers_across_calls_of_different_sizes():
+    """The cached plan's work buffers (kept per thread) serve calls of any size in any order:
+    a large call, a small one, then a large one again all equal the design matrix."""
+    s = _surface(4)
+    rng = np.random.default_rng(8)
+    for n in (40000, 5, 1, 33333):
+        X = rng.uniform([-4, -1.5, 0, 0], [2, 1.5, 0.5, 0.5], size=(n, 4)).T
+        np.testing.assert_allclose(s(X), s.design(X) @ np.array(s.coef), rtol=1e-12, atol=1e-12,
+                                   err_msg=f"n = {n}")

@@ -144,9 +144,9 @@ class CorrectedForm:
             base = self.base_log_bar(q, alpha_model, Eb, Hf, nu_cb, nu_sb, ratio_cache)
             if q in self.patch:
                 beta = smoothstep((X[1] - BLEND_LOG10_E[0]) / (BLEND_LOG10_E[1] - BLEND_LOG10_E[0]))
-                val = base.copy()
-                glob, on = beta < 1.0, beta > 0.0
-                val[glob] += v[glob] * shared[q][glob] * (1.0 - beta[glob])
+                on = beta > 0.0
+                # the global surface where beta < 1 (elementwise: the same values as masked updates)
+                val = np.where(beta < 1.0, base + v * shared[q] * (1.0 - beta), base)
                 if np.any(on):
                     Xp = np.vstack([M.xi_H(Hf[on]), X[1:, on]])
                     val[on] += v[on] * self.patch[q](Xp) * beta[on]

@@ -126,9 +126,11 @@ class IndenterForm:
 
     surfaces: Mapping[str, Surface]
 
-    def log_bars(self, rigid_bars: Callable, E, H, nu_c, nu_s, gamma) -> dict[str, np.ndarray]:
+    def log_bars(self, rigid_bars: Callable, E, H, nu_c, nu_s, gamma, *,
+                 logs: bool = False) -> dict[str, np.ndarray]:
         """``ln bar_q`` of an elastic indenter (flattened broadcast shape); ``rigid_bars(E, H,
-        nu_c, nu_s)`` are the rigid indenter's bars (the rule's elastic-substrate best form)."""
+        nu_c, nu_s)`` are the rigid indenter's bars (the rule's elastic-substrate best form), or
+        their logarithms with ``logs`` (no ``exp`` and ``ln`` round trip: the fast path)."""
         E, H, nu_c, nu_s, gamma = (np.asarray(v, dtype=float).ravel() for v in np.broadcast_arrays(
             *(np.asarray(v, dtype=float) for v in (E, H, nu_c, nu_s, gamma))))
         X = variables(E, H, nu_c, nu_s, gamma)
@@ -136,7 +138,8 @@ class IndenterForm:
         base = rigid_bars(E_eq, H, nu_eq, nu_s)
         v = weight(H, gamma)
         vals = evaluate_shared([self.surfaces[q] for q in M.QUANTITIES], X)
-        return {q: np.log(base[q]) + v * d for q, d in zip(M.QUANTITIES, vals, strict=True)}
+        return {q: (base[q] if logs else np.log(base[q])) + v * d
+                for q, d in zip(M.QUANTITIES, vals, strict=True)}
 
     def to_dict(self) -> dict:
         """Full tensor surfaces, stored compactly: the degrees per variable and the coefficients in

@@ -201,13 +201,21 @@ class RefitRule:
         """``(E, H, nu_c, nu_s) -> bars`` of the best form of ``config``, in one block."""
         if self.best_form(config) != "corrected":
             return self.model(config).bars
-        form = self._corrected[config]  # type: ignore[attr-defined]
-        model = self.model(config)
+        log_bars = self._log_bars_function(config)
 
         def bars(E, H, nu_c, nu_s):
-            return {q: np.exp(v) for q, v in form.log_bars(E, H, nu_c, nu_s, model).items()}
+            return {q: np.exp(v) for q, v in log_bars(E, H, nu_c, nu_s).items()}
 
         return bars
+
+    def _log_bars_function(self, config: str):
+        """``(E, H, nu_c, nu_s) -> ln bars`` of the best form of ``config``, in one block."""
+        if self.best_form(config) != "corrected":
+            bars = self.model(config).bars
+            return lambda E, H, nu_c, nu_s: {q: np.log(v) for q, v in bars(E, H, nu_c, nu_s).items()}
+        form = self._corrected[config]  # type: ignore[attr-defined]
+        model = self.model(config)
+        return lambda E, H, nu_c, nu_s: form.log_bars(E, H, nu_c, nu_s, model)
 
     def ellipse_bars(self, E, H, rho, nu_c=0.3, nu_s=0.3) -> dict[str, np.ndarray]:
         """Bars of r_a, r_b, delta, p of a rigid indenter on a coated half-space with the relative
@@ -235,10 +243,10 @@ class RefitRule:
         form = self._indenter  # type: ignore[attr-defined]
         if form is None:
             raise CoatHertzError(f"the refit data {self.source!r} has no elastic-indenter form")
-        rigid = self._bars_function("elastic")
+        rigid = self._log_bars_function("elastic")
 
         def bars(E, H, gamma, nu_c, nu_s):
-            return {q: np.exp(v) for q, v in form.log_bars(rigid, E, H, nu_c, nu_s, gamma).items()}
+            return {q: np.exp(v) for q, v in form.log_bars(rigid, E, H, nu_c, nu_s, gamma, logs=True).items()}
 
         return in_blocks(bars, E, H, gamma, nu_c, nu_s)
 
@@ -459,25 +467,34 @@ def _predict_indenter_ellipse(case, pred, rule: RefitRule, params: dict, warn: b
 
 #: Points per core below which :meth:`RefitRule.bars` evaluates in one block (threads cost more).
 PARALLEL_MIN = 65536
+#: Points per call of the form: large inputs are evaluated in pieces of this size, so that the
+#: form's element-wise passes run from cache rather than memory, and the threads take the pieces
+#: from one queue (a thread held up by other work on the machine delays the end by a piece, not
+#: by half of the input).
+PIECE = 32768
 
 
 def in_blocks(fn, *args) -> dict[str, np.ndarray]:
-    """``fn(*args)`` (returning flattened arrays per key) on the broadcast inputs, in one block per
-    core when there are at least :data:`PARALLEL_MIN` points per core; ``None`` arguments are
-    passed on as ``None``. The blocks run in threads with single-threaded BLAS: numpy releases
-    the GIL in the element-wise work and the matrix products, so every core is used without
-    oversubscription, and the values are those of the one-block evaluation."""
+    """``fn(*args)`` (returning flattened arrays per key) on the broadcast inputs, in pieces of
+    :data:`PIECE` points spread over one thread per core when there are at least
+    :data:`PARALLEL_MIN` points per core; ``None`` arguments are passed on as ``None``. The
+    threads run with single-threaded BLAS: numpy releases the GIL in the element-wise work and
+    the matrix products, so every core is used without oversubscription, and the values are those
+    of the one-block evaluation."""
     arrays = np.broadcast_arrays(*(np.asarray(np.nan if v is None else v, dtype=float) for v in args))
     n = arrays[0].size
-    threads = min(os.cpu_count() or 1, n // PARALLEL_MIN)
-    if threads < 2:
+    threads = max(1, min(os.cpu_count() or 1, n // PARALLEL_MIN))
+    if threads < 2 and n <= PIECE:
         return fn(*args)
     flat = [a.ravel() for a in arrays]
-    cuts = np.linspace(0, n, threads + 1).astype(int)
 
-    def block(k: int) -> dict[str, np.ndarray]:
-        return fn(*(None if v is None else f[cuts[k] : cuts[k + 1]] for v, f in zip(args, flat, strict=True)))
+    def piece(a: int) -> dict[str, np.ndarray]:
+        b = min(a + PIECE, n)
+        return fn(*(None if v is None else f[a:b] for v, f in zip(args, flat, strict=True)))
 
-    with blas_threads(1), ThreadPoolExecutor(threads) as pool:
-        parts = list(pool.map(block, range(threads)))
+    if threads < 2:
+        parts = [piece(a) for a in range(0, n, PIECE)]
+    else:
+        with blas_threads(1), ThreadPoolExecutor(threads) as pool:
+            parts = list(pool.map(piece, range(0, n, PIECE)))
     return {q: np.concatenate([p[q] for p in parts]) for q in parts[0]}

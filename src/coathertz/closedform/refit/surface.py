@@ -12,16 +12,21 @@ multiply-add per term of the first two variables' tensor per group).
 
 from __future__ import annotations
 
+import contextlib
+import threading
 from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
 
+from coathertz.blas import blas_threads
 from coathertz.errors import CoatHertzError
 
-CHUNK = 1024  # points per matrix product (W stays in cache)
-TABLE_CHUNK = 32768  # points per set of Chebyshev tables
+CHUNK = 256  # fewest points per matrix product
+CHUNK_MAX = 4096  # most points per matrix product
+W_DOUBLES = 49152  # W of one chunk at most about this many values (384 kB: in one core's L2)
+TABLE_CHUNK = 16384  # points per set of Chebyshev tables (their buffers are kept per thread)
 
 
 def chebyshev_table(s: np.ndarray, degree: int) -> np.ndarray:
@@ -168,49 +173,136 @@ def evaluate_shared(surfaces: Sequence[Surface], X: np.ndarray) -> list[np.ndarr
     term but the first variable's, which a final weighted sum over the few rows of its table
     finishes. The product's inner dimension is the number of ``rest`` indices (hundreds for the
     tensor surfaces of the corrected form) and its output only ``(surfaces x degree) x chunk``,
-    so it runs at matrix-product speed from cache; chunks of ``CHUNK`` points keep ``W`` in cache.
+    so it runs at matrix-product speed from cache; chunks of ``CHUNK`` to ``CHUNK_MAX`` points
+    keep ``W`` within :data:`W_DOUBLES` values (one core's L2 cache).
+    The matrix of coefficients and the index maps are built once per set of surfaces
+    (:class:`_Plan`); tables, ``W`` and the product are written into buffers reused chunk by
+    chunk (no temporaries: the evaluation rate is that of the matrix product plus a few
+    element-wise passes, ``tests/benchmarks/bench_refit.py``).
     """
     first = surfaces[0]
     X = np.asarray(X, dtype=float)
     if any((s.variables, s.lo, s.hi) != (first.variables, first.lo, first.hi) for s in surfaces[1:]):
         return [s(X) for s in surfaces]
-    d, n = X.shape
-    rest = tuple(sorted({r for s in surfaces for r in s._layout[0]}))
-    where = {r: k for k, r in enumerate(rest)}
-    n0 = max(s.degrees[0] for s in surfaces) + 1
-    big = np.zeros((len(surfaces) * n0, len(rest)))
-    for m, s in enumerate(surfaces):
-        rs, C = s._layout
-        big[m * n0 : m * n0 + C.shape[0], [where[r] for r in rs]] = C
-    degs = tuple(max(s.degrees[v] for s in surfaces) for v in range(d))
-    pick = None  # rows of the full tensor that are rest indices (None: all of them, in order)
-    if d > 1:
-        flat = np.ravel_multi_index(np.array(rest).T, tuple(k + 1 for k in degs[1:]))
-        if not np.array_equal(flat, np.arange(np.prod([k + 1 for k in degs[1:]]))):
-            pick = flat
-    outs = [np.empty(n) for _ in surfaces]
-
-    def block(t0: int) -> None:  # tables for many points at once (few Python steps) ...
-        S_all = first.scaled(X[:, t0 : t0 + TABLE_CHUNK])
-        tabs_all = [chebyshev_table(S_all[v], degs[v]) for v in range(d)]
-        for c0 in range(0, S_all.shape[1], CHUNK):  # ... the product in cache-sized pieces
-            _product(big, [t[:, c0 : c0 + CHUNK] for t in tabs_all], pick, n0, outs, t0 + c0)
-
-    for t0 in range(0, n, TABLE_CHUNK):
-        block(t0)
-    return outs
+    return _plan(tuple(surfaces)).evaluate(X)
 
 
-def _product(big: np.ndarray, tabs: list[np.ndarray], pick: np.ndarray | None, n0: int,
-             outs: list[np.ndarray], s0: int) -> None:
-    """One cache-sized chunk of :func:`evaluate_shared`: ``tabs`` are the Chebyshev tables of
-    its points, the values go to ``outs[m][s0 : s0 + chunk]``."""
-    T0, n = tabs[0], tabs[0].shape[1]
-    W = tabs[1] if len(tabs) > 1 else np.ones((1, n))
-    for T in tabs[2:]:  # the full tensor of the tables of the variables after the first
-        W = (W[:, None, :] * T[None, :, :]).reshape(-1, n)
-    if pick is not None:
-        W = W[pick]
-    B = (big @ W).reshape(len(outs), n0, n)
-    for m, out in enumerate(outs):
-        out[s0 : s0 + n] = np.einsum("in,in->n", B[m], T0)
+_PLANS: dict[tuple[int, ...], tuple[tuple[Surface, ...], _Plan]] = {}
+
+
+def _plan(surfaces: tuple[Surface, ...]) -> _Plan:
+    """The cached :class:`_Plan` of ``surfaces`` (keyed by identity; the surfaces are kept alive
+    with it, so an identity is never reused while cached)."""
+    key = tuple(id(s) for s in surfaces)
+    hit = _PLANS.get(key)
+    if hit is None or any(a is not b for a, b in zip(hit[0], surfaces, strict=True)):
+        if len(_PLANS) > 64:
+            _PLANS.clear()
+        hit = (surfaces, _Plan(surfaces))
+        _PLANS[key] = hit
+    return hit[1]
+
+
+class _Plan:
+    """The evaluation of several surfaces over the same variables (:func:`evaluate_shared`):
+    ``big[m n0 + i, r]`` is surface m's coefficient of the term ``(i, *rest[r])``; ``pick`` the rows
+    of the full tensor of the tables after the first that are ``rest`` indices (None: all of them,
+    in order)."""
+
+    def __init__(self, surfaces: tuple[Surface, ...]) -> None:
+        first = surfaces[0]
+        d = len(first.variables)
+        rest = tuple(sorted({r for s in surfaces for r in s._layout[0]}))
+        where = {r: k for k, r in enumerate(rest)}
+        n0 = max(s.degrees[0] for s in surfaces) + 1
+        # rows padded with zeros to a multiple of 4 (the matrix product's register block: 63 -> 64
+        # rows take 8 % less time on this machine's OpenBLAS, measured)
+        big = np.zeros((-(-len(surfaces) * n0 // 4) * 4, len(rest)))
+        for m, s in enumerate(surfaces):
+            rs, C = s._layout
+            big[m * n0 : m * n0 + C.shape[0], [where[r] for r in rs]] = C
+        self.degs = tuple(max(s.degrees[v] for s in surfaces) for v in range(d))
+        self.pick = None
+        if d > 1:
+            flat = np.ravel_multi_index(np.array(rest).T, tuple(k + 1 for k in self.degs[1:]))
+            if not np.array_equal(flat, np.arange(np.prod([k + 1 for k in self.degs[1:]]))):
+                self.pick = flat
+        self.big, self.n0, self.count, self.d = big, n0, len(surfaces), d
+        self.lo = np.asarray(first.lo)[:, None]
+        self.hi = np.asarray(first.hi)[:, None]
+        self._local = threading.local()  # work buffers (:meth:`_buffer`), one set per thread
+
+    def _buffer(self, name: str, size: int) -> np.ndarray:
+        """A flat work buffer of at least ``size`` doubles, kept per thread and reused from call to
+        call: fresh large arrays cost a page fault per 4 kB on first touch (measured: the
+        Chebyshev tables at 5 ns per value in fresh arrays against 0.7 in reused ones)."""
+        bufs = self._local.__dict__
+        buf = bufs.get(name)
+        if buf is None or buf.size < size:
+            buf = bufs[name] = np.empty(size)
+        return buf[:size]
+
+    def evaluate(self, X: np.ndarray) -> list[np.ndarray]:
+        n = X.shape[1]
+        out = np.empty((self.count, n))
+        chunk = min(max(CHUNK, min(CHUNK_MAX, W_DOUBLES // self.big.shape[1])), n)
+        block = min(TABLE_CHUNK, n)
+        rows = np.cumprod([k + 1 for k in self.degs[1:]])
+        stages = [self._buffer(f"stage{k}", int(r) * chunk) for k, r in enumerate(rows[1:])]
+        bbuf = self._buffer("product", self.big.shape[0] * chunk)
+        tbuf = self._buffer("tables", sum(k + 1 for k in self.degs) * block)
+        # single-threaded BLAS over many chunks: a threaded product of this size only waits for
+        # its second thread (measured, the one-alpha elastic bars on a busy 2-core machine: 18.6
+        # against 1.0 us of CPU per case); the callers' threads use the cores (rule.in_blocks)
+        with blas_threads(1) if n > 4 * chunk else contextlib.nullcontext():
+            self._chunks(X, out, chunk, stages, bbuf, tbuf)
+        return list(out)
+
+    def _chunks(self, X: np.ndarray, out: np.ndarray, chunk: int, stages: list[np.ndarray],
+                bbuf: np.ndarray, tbuf: np.ndarray) -> None:
+        d, n = X.shape
+        for t0 in range(0, n, TABLE_CHUNK):
+            Xb = X[:, t0 : t0 + TABLE_CHUNK]
+            m = Xb.shape[1]
+            S = (2.0 * np.clip(Xb, self.lo, self.hi) - (self.lo + self.hi)) / (self.hi - self.lo)
+            tabs, at = [], 0
+            for v in range(d):
+                k = self.degs[v] + 1
+                tabs.append(_table(S[v], self.degs[v], tbuf[at : at + k * m].reshape(k, m)))
+                at += k * m
+            for c0 in range(0, m, chunk):
+                c1 = min(c0 + chunk, m)
+                self._product([t[:, c0:c1] for t in tabs], out[:, t0 + c0 : t0 + c1], stages, bbuf)
+
+    def _product(self, tabs: list[np.ndarray], out: np.ndarray, stages: list[np.ndarray],
+                 bbuf: np.ndarray) -> None:
+        """One cache-sized chunk: ``tabs`` are the Chebyshev tables of its points; the values go
+        to ``out`` (surfaces x points); ``stages`` and ``bbuf`` are the buffers of the partial
+        tensors and of the matrix product."""
+        T0, n = tabs[0], tabs[0].shape[1]
+        if len(tabs) == 1:
+            W = np.ones((1, n))
+        else:
+            W = tabs[1]
+            for T, buf in zip(tabs[2:], stages, strict=True):  # the full tensor of the tables after the first
+                nxt = buf[: W.shape[0] * T.shape[0] * n].reshape(W.shape[0] * T.shape[0], n)
+                np.multiply(W[:, None, :], T[None, :, :], out=nxt.reshape(W.shape[0], T.shape[0], n))
+                W = nxt
+            if self.pick is not None:
+                W = W[self.pick]
+        B = np.matmul(self.big, W, out=bbuf[: self.big.shape[0] * n].reshape(self.big.shape[0], n))
+        np.einsum("min,in->mn", B[: self.count * self.n0].reshape(self.count, self.n0, n), T0, out=out)
+
+
+def _table(s: np.ndarray, degree: int, out: np.ndarray) -> np.ndarray:
+    """:func:`chebyshev_table` into ``out`` without temporaries (the same operations, so the same
+    values)."""
+    out[0] = 1.0
+    if degree >= 1:
+        out[1] = s
+    if degree >= 2:
+        s2 = 2.0 * s
+        for k in range(2, degree + 1):
+            np.multiply(s2, out[k - 1], out=out[k])
+            out[k] -= out[k - 2]
+    return out
