@@ -194,7 +194,8 @@ class FFTMethod:
         ``LAYER_CELLS_MIN = 1``; ``STIFF_FACTOR = 1.5`` times that for a coating more than
         ``STIFF_CONTRAST = 4`` times stiffer than its substrate; ``None``: off). Where it
         spans fewer, the case is solved again
-        on the same domain with the ``n`` that gives it that many (as far as ``max_memory_gb``
+        on the same domain with the ``n`` that gives it that many (rounded up to a fast
+        transform length, :func:`~coathertz.fft.grid.fast_n`; as far as ``max_memory_gb``
         allows, from the grid solution prolonged), and ``meta["layer_refinement"]`` records it:
         below a cell the coating's edge boundary layer lies inside one cell and no fit of the
         grid solution recovers ``a`` to 0.1 % (see :data:`LAYER_CELLS_MIN`). Where even that
