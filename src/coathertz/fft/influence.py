@@ -253,10 +253,20 @@ def _radial_symmetric(fun, x: np.ndarray) -> np.ndarray:
     return out
 
 
-@lru_cache(maxsize=16)
 def _triangle(n: int) -> tuple[np.ndarray, np.ndarray]:
-    """Row and column indices of the upper triangle of an ``n x n`` array (read-only)."""
+    """Row and column indices (int32) of the upper triangle of an ``n x n`` array, read-only;
+    cached up to ``n = 1600`` (10 MB each; the triangle of a larger array is made when needed)."""
+    return _triangle_cached(n) if n <= 1600 else _triangle_of(n)
+
+
+@lru_cache(maxsize=16)
+def _triangle_cached(n: int) -> tuple[np.ndarray, np.ndarray]:
+    return _triangle_of(n)
+
+
+def _triangle_of(n: int) -> tuple[np.ndarray, np.ndarray]:
     iu, ju = np.triu_indices(n)
+    iu, ju = iu.astype(np.int32), ju.astype(np.int32)
     iu.flags.writeable = False
     ju.flags.writeable = False
     return iu, ju
