@@ -175,3 +175,33 @@ def test_coefficients_end_to_end_against_hankel_transform(body, interface):
         for i, r in ((0, 0.0), (i5, i5 * dx)):
             ex = _hertz_pressure_displacement(body, a, p0, r, interface)
             assert u[n // 2, n // 2 + i] / ex - 1 == pytest.approx(0, abs=tol), (n, r)
+
+
+@pytest.mark.parametrize(("nx", "ny", "dx", "dy"), [(24, 24, 1e-6, 1e-6), (24, 16, 1e-6, 1e-6),
+                                                    (24, 24, 1e-6, 0.5e-6)])
+def test_fast_coefficient_paths_are_bitwise_the_direct_ones(nx, ny, dx, dy):
+    """The shared-value and symmetric evaluations of the coefficients (one pass for the three
+    corner functions; the remainder on the quadrant ``ky >= 0`` or its upper triangle) give
+    exactly the values of the direct evaluations they replace: no round-off changed."""
+    from scipy import fft as sfft
+
+    from coathertz.fft.influence import (
+        _corner_sum,
+        _layer_corner_sums,
+        _radial_on_grid,
+        _radial_symmetric,
+        d_solid_angle_corner,
+    )
+
+    a = 0.7e-6
+    fast = _layer_corner_sums(nx, ny, dx, dy, a)
+    for f, got in zip((love_corner, solid_angle_corner, d_solid_angle_corner), fast, strict=True):
+        np.testing.assert_array_equal(got, _corner_sum(f, nx, ny, dx, dy, a))
+    split = LayerSplit.of(Layer(Material(600e9, 0.25), STEEL))
+    kx = 2 * np.pi * sfft.rfftfreq(4 * nx, dx)
+    ky = 2 * np.pi * sfft.fftfreq(4 * ny, dy)
+    fun = lambda k: split.remainder(k * 3e-6)  # noqa: E731
+    np.testing.assert_array_equal(_radial_on_grid(fun, kx, ky),
+                                  fun(np.hypot(kx[None, :], ky[:, None])))
+    x = np.linspace(0.0, 5.0, 37)
+    np.testing.assert_array_equal(_radial_symmetric(np.exp, x), np.exp(np.hypot(x[None, :], x[:, None])))

@@ -16,11 +16,11 @@ THIN = ["fft", "--W", "1 N", "--R", "10 mm", "--substrate", "200 GPa,0.3",
 def test_thin_coating_is_refined_and_the_output_says_so(capsys):
     assert main(THIN) == 0
     out = capsys.readouterr()
-    assert "grid refined from 128 to 248: the coating spanned 0.52 cells" in out.out, out.out
+    assert "grid refined from 128 to 250: the coating spanned 0.52 cells" in out.out, out.out
     assert "warning" not in out.err, out.err
     assert main([*THIN, "--json"]) == 0
     meta = json.loads(capsys.readouterr().out)["meta"]
-    assert meta["layer_refinement"]["n"] == meta["grid"]["nx"] == 248
+    assert meta["layer_refinement"]["n"] == meta["grid"]["nx"] == 250
     assert meta["layer_cells"] >= 1.0 and "accuracy" not in meta
 
 

@@ -57,3 +57,21 @@ def test_order_of_bodies_does_not_matter(E, H):
     r1 = M.solve(ContactCase(ball, flat, 2.0))
     r2 = M.solve(ContactCase(flat, ball, 2.0))
     assert (r1.delta, r1.a, r1.p0) == pytest.approx((r2.delta, r2.a, r2.p0), rel=1e-12)
+
+
+@given(st.integers(2, 5000))
+@settings(max_examples=200, deadline=None)
+def test_fast_n_is_the_next_even_5_smooth_size(n):
+    """The refinement's ``n``: even, at least ``n``, no prime factor above 5, and no smaller
+    even number in between has that property."""
+    from coathertz.fft.grid import fast_n
+
+    def smooth(m: int) -> bool:
+        for f in (2, 3, 5):
+            while m % f == 0:
+                m //= f
+        return m == 1
+
+    m = fast_n(n)
+    assert m >= n and m % 2 == 0 and smooth(m)
+    assert not any(smooth(k) for k in range(n + n % 2, m, 2))

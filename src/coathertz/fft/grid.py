@@ -144,3 +144,20 @@ def grid_for_axes(
     half = n / 2 - 0.5
     dx = margin * max(r_a, r_b / ratio) / half
     return Grid(n, n, dx, dx * ratio)
+
+
+def fast_n(n: int) -> int:
+    """The smallest even ``m >= n`` without a prime factor above 5: the padded transforms
+    (length ``2m``) then run on pocketfft's fast radices. A refinement's ``n`` comes from the
+    coating's thickness and can have a large prime factor; one transform pair (one thread, 2
+    shared cores) took 15.1 ms at n = 262 (2 x 131) against 4.1 ms at 270, and 16.0 ms at
+    376 (8 x 47) against 7.7 ms at 384."""
+    m = max(2, int(n) + int(n) % 2)
+    while True:
+        k = m
+        for f in (2, 3, 5):
+            while k % f == 0:
+                k //= f
+        if k == 1:
+            return m
+        m += 2

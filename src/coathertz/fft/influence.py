@@ -110,7 +110,40 @@ def _corner_sum(fun, nx, ny, dx, dy, *args):
     xc = (np.arange(nx + 2) - 0.5) * dx
     yc = (np.arange(ny + 2) - 0.5) * dy
     Fc = fun(xc[None, :], yc[:, None], *args)
+    return _corner_diff(Fc)
+
+
+def _corner_diff(Fc: np.ndarray) -> np.ndarray:
+    """The corner sum ``F(++) - F(+-) - F(-+) + F(--)`` of corner values ``Fc``."""
     return Fc[1:, 1:] - Fc[1:, :-1] - Fc[:-1, 1:] + Fc[:-1, :-1]
+
+
+def _layer_corner_sums(nx, ny, dx, dy, a) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The corner sums of :func:`love_corner`, :func:`solid_angle_corner` and
+    :func:`d_solid_angle_corner` at depth ``a > 0``, in one pass.
+
+    The same expressions as the three functions, evaluated once where they share a value
+    (``rho``, ``xy``, the arc tangent), so the sums are bitwise those of :func:`_corner_sum`
+    with each function (tested). On a square lattice (``nx = ny``, ``dx = dy``) Love's two
+    ``asinh`` terms are each other's transpose and one of them is computed.
+    """
+    xc = (np.arange(nx + 2) - 0.5) * dx
+    yc = (np.arange(ny + 2) - 0.5) * dy
+    x, y = xc[None, :], yc[:, None]
+    xy = x * y
+    rho2 = x * x + y * y + a * a
+    rho = np.sqrt(rho2)
+    atan = np.arctan2(xy, a * rho)
+    sx = np.sqrt(x * x + a * a)
+    first = x * np.arcsinh(y / sx)
+    if nx == ny and dx == dy:  # y asinh(x / sy) is the transpose of x asinh(y / sx)
+        love = first + first.T
+    else:
+        sy = np.sqrt(y * y + a * a)
+        love = first + y * np.arcsinh(x / sy)
+    love = love - a * atan
+    d_solid = -xy * (rho2 + a * a) / (rho * (a * a * rho2 + xy**2))
+    return _corner_diff(love), _corner_diff(atan), _corner_diff(d_solid)
 
 
 @lru_cache(maxsize=16)
@@ -177,15 +210,66 @@ def _split_of(layer: Layer | StackFRF) -> LayerSplit:
     return LayerSplit.of(layer)
 
 
-def _remainder_kspace(split: LayerSplit, h, nx, ny, dx, dy, oversample=2):
+def _remainder_kspace(split, h, nx, ny, dx, dy, oversample=2):
     Mx, My = oversample * 2 * nx, oversample * 2 * ny
     kx = 2 * np.pi * sfft.rfftfreq(Mx, dx)
     ky = 2 * np.pi * sfft.fftfreq(My, dy)
-    k = np.hypot(kx[None, :], ky[:, None])
-    g_hat = split.remainder(k * h) * np.sinc(kx * dx / (2 * np.pi))[None, :]
+    g_hat = _radial_on_grid(lambda k: split.remainder(k * h), kx, ky)
+    g_hat *= np.sinc(kx * dx / (2 * np.pi))[None, :]
     g_hat *= np.sinc(ky * dy / (2 * np.pi))[:, None]
     g = sfft.irfft2(g_hat, s=(My, Mx))  # cell-integrated kernel / (2 h / Ec*)
     return g[: ny + 1, : nx + 1]
+
+
+def _radial_on_grid(fun, kx: np.ndarray, ky: np.ndarray) -> np.ndarray:
+    """``fun(hypot(kx, ky))`` on the grid ``ky[:, None] x kx[None, :]`` (``kx = rfftfreq``,
+    ``ky = fftfreq`` of an even length, times ``2 pi / d``), ``fun`` elementwise.
+
+    ``fun`` is evaluated once per distinct point of the quadrant ``ky >= 0`` (the rows of
+    ``-ky`` hold the same ``|k|`` bitwise: ``fftfreq`` negates integer multiples) and, when the
+    quadrant is square with equal frequencies (``dx = dy``, ``nx = ny``), only on its upper
+    triangle (``hypot`` is symmetric): a quarter of the evaluations, bitwise the same values.
+    """
+    My = ky.size
+    if My % 2:  # pragma: no cover - the callers' lengths are even
+        return fun(np.hypot(kx[None, :], ky[:, None]))
+    half = My // 2
+    kyq = np.abs(ky[: half + 1])  # 0 .. My/2 (the last one is -My/2's magnitude)
+    if kyq.size == kx.size and np.array_equal(kyq, kx):
+        q = _radial_symmetric(fun, kx)
+    else:
+        q = fun(np.hypot(kx[None, :], kyq[:, None]))
+    return np.concatenate([q, q[half - 1 : 0 : -1]], axis=0)
+
+
+def _radial_symmetric(fun, x: np.ndarray) -> np.ndarray:
+    """``fun(hypot(x[None, :], x[:, None]))`` with ``fun`` (elementwise) evaluated on the upper
+    triangle only: ``hypot`` is symmetric, so the result is bitwise the full evaluation."""
+    iu, ju = _triangle(x.size)
+    vals = fun(np.hypot(x[ju], x[iu]))
+    out = np.empty((x.size, x.size))
+    out[iu, ju] = vals
+    out[ju, iu] = vals
+    return out
+
+
+def _triangle(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Row and column indices (int32) of the upper triangle of an ``n x n`` array, read-only;
+    cached up to ``n = 1600`` (10 MB each; the triangle of a larger array is made when needed)."""
+    return _triangle_cached(n) if n <= 1600 else _triangle_of(n)
+
+
+@lru_cache(maxsize=16)
+def _triangle_cached(n: int) -> tuple[np.ndarray, np.ndarray]:
+    return _triangle_of(n)
+
+
+def _triangle_of(n: int) -> tuple[np.ndarray, np.ndarray]:
+    iu, ju = np.triu_indices(n)
+    iu, ju = iu.astype(np.int32), ju.astype(np.int32)
+    iu.flags.writeable = False
+    ju.flags.writeable = False
+    return iu, ju
 
 
 #: Radial tables are made for reaches ``S = rcut / h`` rounded up to this ratio, so that the nested
@@ -203,14 +287,39 @@ def _radial_table(split: LayerSplit, S: float) -> CubicSpline:
     hence cached."""
     # rho decays like exp(-2 t) for one layer; a stack's like exp(-2 t h_top/h) (its top layer)
     tmax = 32.0 / min(split.c, 2.0) / getattr(split.layer, "top_fraction", 1.0)
-    xg, wg = np.polynomial.legendre.leggauss(16)
+    s, t, w, J = _hankel_nodes(tmax, S)
+    return CubicSpline(s, (J @ (split.remainder(t) * t * w)) / (2 * np.pi))
+
+
+@lru_cache(maxsize=32)
+def _hankel_nodes(tmax: float, S: float) -> tuple[np.ndarray, ...]:
+    """The nodes of :func:`_radial_table`: ``s`` (513 points on ``[0, S]``), the Gauss--Legendre
+    nodes ``t`` and weights ``w`` on ``[0, tmax]`` and the matrix ``J0(s t)`` (read-only).
+
+    They depend on ``tmax`` and ``S`` only, not on the layer: cases with different coatings
+    whose grids reach the same ``S`` (rounded to powers of :data:`S_STEP`) share the matrix,
+    whose Bessel functions cost most of a table (up to 513 x 1216 values, 5 MB; the 31
+    reaches of the quick report's grids take 45 MB)."""
+    xg, wg = _leggauss(16)
     panels = int(max(8, tmax * S / (4 * np.pi)))
     edges = np.linspace(0.0, tmax, panels + 1)
     half = 0.5 * np.diff(edges)
     t = (edges[:-1, None] + half[:, None] * (xg[None, :] + 1)).ravel()
     w = (half[:, None] * wg[None, :]).ravel()
     s = np.linspace(0.0, S, 513)
-    return CubicSpline(s, (j0(np.outer(s, t)) @ (split.remainder(t) * t * w)) / (2 * np.pi))
+    J = j0(np.outer(s, t))
+    for a in (s, t, w, J):
+        a.flags.writeable = False
+    return s, t, w, J
+
+
+@lru_cache(maxsize=8)
+def _leggauss(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss--Legendre nodes and weights on ``[-1, 1]`` (cached; read-only)."""
+    x, w = np.polynomial.legendre.leggauss(n)
+    x.flags.writeable = False
+    w.flags.writeable = False
+    return x, w
 
 
 def _table_reach(rmax_over_h: float) -> float:
@@ -242,10 +351,13 @@ def _remainder_space(split: LayerSplit, h, nx, ny, dx, dy):
         return out
 
     # Gauss points per cell and axis: 3 for kernels 4-8 cells wide, 2 beyond (error (dx/h)^4)
-    gx, gw = np.polynomial.legendre.leggauss(3 if h < 2 * H_SWITCH * max(dx, dy) else 2)
+    gx, gw = _leggauss(3 if h < 2 * H_SWITCH * max(dx, dy) else 2)
     xs = (np.arange(nx + 1)[:, None] * dx + gx[None, :] * dx / 2).ravel()
     ys = (np.arange(ny + 1)[:, None] * dy + gx[None, :] * dy / 2).ravel()
-    vals = g(np.hypot(xs[None, :], ys[:, None]))
+    if nx == ny and dx == dy:  # symmetric in x and y: g on the upper triangle only (bitwise)
+        vals = _radial_symmetric(g, xs)
+    else:
+        vals = g(np.hypot(xs[None, :], ys[:, None]))
     m = gx.size
     vals = vals.reshape(ny + 1, m, nx + 1, m)
     out = np.einsum("iajb,a,b->ij", vals, gw, gw)
@@ -272,10 +384,11 @@ def layer_coefficients(
     Ec = cmat.E_star
     split = _split_of(layer)
     a = split.c * h
+    love_a, solid, d_solid = _layer_corner_sums(nx, ny, dx, dy, a)
     K = _love_unit(nx, ny, float(dx), float(dy)).copy()
-    K += (split.F0 - 1.0) * _corner_sum(love_corner, nx, ny, dx, dy, a)
-    K += split.beta * h * _corner_sum(solid_angle_corner, nx, ny, dx, dy, a)
-    K -= split.gamma * h * h * _corner_sum(d_solid_angle_corner, nx, ny, dx, dy, a)
+    K += (split.F0 - 1.0) * love_a
+    K += split.beta * h * solid
+    K -= split.gamma * h * h * d_solid
     K /= np.pi * Ec
     if h < H_SWITCH * max(dx, dy):
         rem = _remainder_kspace(split, h, nx, ny, dx, dy)

@@ -48,6 +48,7 @@ from coathertz.fft.grid import (
     RESOLVE_BELOW,
     Grid,
     check_n,
+    fast_n,
     grid_for_axes,
 )
 from coathertz.fft.influence import body_coefficients, circulant
@@ -193,7 +194,8 @@ class FFTMethod:
         ``LAYER_CELLS_MIN = 1``; ``STIFF_FACTOR = 1.5`` times that for a coating more than
         ``STIFF_CONTRAST = 4`` times stiffer than its substrate; ``None``: off). Where it
         spans fewer, the case is solved again
-        on the same domain with the ``n`` that gives it that many (as far as ``max_memory_gb``
+        on the same domain with the ``n`` that gives it that many (rounded up to a fast
+        transform length, :func:`~coathertz.fft.grid.fast_n`; as far as ``max_memory_gb``
         allows, from the grid solution prolonged), and ``meta["layer_refinement"]`` records it:
         below a cell the coating's edge boundary layer lies inside one cell and no fit of the
         grid solution recovers ``a`` to 0.1 % (see :data:`LAYER_CELLS_MIN`). Where even that
@@ -389,7 +391,9 @@ class FFTMethod:
 
     def _resolve_layer(self, case: ContactCase, r: ContactResult) -> ContactResult:
         """``r``, or the case solved again on a grid on which its thinnest coating spans
-        ``layer_cells`` cells (same domain, finer cells; see the ``layer_cells`` parameter)."""
+        ``layer_cells`` cells (same domain, finer cells; see the ``layer_cells`` parameter). The
+        finer ``n`` is the next one whose transforms are fast (:func:`~coathertz.fft.grid.fast_n`),
+        where the memory budget allows."""
         if self.layer_cells is None or r.meta["radius_estimator"] != "gap-fit":
             return r
         g = Grid(**r.meta["grid"])
@@ -398,6 +402,9 @@ class FFTMethod:
             return r
         if n_fine > N_MAX or estimate_memory(n_fine, n_fine) > self.memory_budget():
             return r  # left to the note
+        fast = fast_n(n_fine)  # a few more cells, on transform lengths that run fast
+        if fast <= N_MAX and estimate_memory(fast, fast) <= self.memory_budget():
+            n_fine = fast
         dx = g.half_widths[0] / (n_fine // 2 - 0.5)
         fine = Grid(n_fine, n_fine, dx, dx * g.dy / g.dx)
         p_start = prolong_pressure(r.fields["pressure"], g, fine)
