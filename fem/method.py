@@ -146,6 +146,14 @@ def _choice(name: str, value: str, options: dict) -> Any:
     return options[value]
 
 
+#: Elements across the contact radius at the ``quick`` resolution (the main job): 30 instead of the
+#: default mesh's 40. Measured on the 21 elastic FE cases of the quick studies (AMD EPYC, one
+#: process): 14.5 -> 9.1 CPU-s; the largest difference from the exact method grows from 0.043 % to
+#: 0.065 % in a and from 0.006 % to 0.011 % in p0 (delta: 0.007 % both), below every bound the FE
+#: takes part in (multilayer: 0.1 % in a, 0.02 % in delta and p0).
+QUICK_N_A = 30
+
+
 class FEMMethod:
     """Axisymmetric FE contact model (scikit-fem, Q2 elements, Taylor-Hood u-p for nu >= 0.45).
 
@@ -192,8 +200,13 @@ class FEMMethod:
 
     @classmethod
     def settings_for(cls, resolution: str) -> dict[str, Any]:
-        """Coarse mesh at ``tiny``, the default mesh otherwise."""
-        return {"mesh": "coarse" if resolution == "tiny" else "default"}
+        """Coarse mesh at ``tiny``; at ``quick`` the default mesh with :data:`QUICK_N_A` elements
+        across a; the default mesh at ``full``."""
+        if resolution == "tiny":
+            return {"mesh": "coarse"}
+        if resolution == "quick":
+            return {"mesh": "default", "n_a": QUICK_N_A}
+        return {"mesh": "default"}
 
 
     name = "fem"

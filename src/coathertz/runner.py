@@ -324,7 +324,11 @@ def run_tasks(
     if adopted:
         covered = {Task(c, m).key for m, cs, _ in adopted.values() for c in cs}
         pending = [t for t in pending if t.key not in covered]
+    own = {t.key for t in unique.values()}
     if not pending and not adopted:
+        # nothing to solve here (every result stored): the next call's cases start now, on the
+        # workers, while this process analyses and draws
+        _start_ahead(ahead, store, own, chunk_size, workers, scheduler)
         outcome.wall_time = time.perf_counter() - t_start
         return outcome
 
@@ -363,18 +367,20 @@ def run_tasks(
         remote = [t for t in pending if t.method.name not in inline]
         if scheduler is None and workers <= 1:
             local, remote = local + remote, []
-        for m, cs in _chunks(local, chunk_size):
-            t0 = time.perf_counter()
-            res = solve_chunk(m, cs)
-            record(m, cs, res, time.perf_counter() - t0)
-        if remote or adopted:
-            chunks = _chunks(remote, chunk_size)
-            if scheduler is not None:
-                _run_dask(chunks, scheduler, record)
-            else:
-                own = {t.key for t in unique.values()}
-                later = None if ahead is None else (lambda: _AHEAD.plan(ahead, store, own, chunk_size))
-                _run_processes(chunks, workers, record, adopted, later)
+        local_chunks = _chunks(local, chunk_size)
+        if (remote or adopted) and scheduler is None:
+            # the workers start first; this process solves its own (inline) chunks meanwhile
+            later = None if ahead is None else (lambda: _AHEAD.plan(ahead, store, own, chunk_size))
+            _run_processes(_chunks(remote, chunk_size), workers, record, adopted, later, local_chunks)
+        else:
+            if not remote:  # nothing for the workers from this call: the next call's cases start now
+                _start_ahead(ahead, store, own, chunk_size, workers, scheduler)
+            for m, cs in local_chunks:
+                t0 = time.perf_counter()
+                res = solve_chunk(m, cs)
+                record(m, cs, res, time.perf_counter() - t0)
+            if remote:
+                _run_dask(_chunks(remote, chunk_size), scheduler, record)
     finally:
         bar.close()
         outcome.wall_time = time.perf_counter() - t_start
@@ -577,12 +583,33 @@ class worker_pool:  # a context manager, named like the function it reads as
             _kill_pool(self._ex)
 
 
+def _start_ahead(ahead: Callable[[], Iterable[Task]] | None, store: ResultStore, own: set,
+                 chunk_size: int | None, workers: int, scheduler: Any) -> None:
+    """Start the next call's work (``ahead``) on the open :class:`worker_pool` now: for a call
+    that gives the workers nothing (every result stored, or only inline methods), so that they
+    solve while this process goes on (its inline cases, the study's analysis and figures)."""
+    if ahead is None or scheduler is not None or workers <= 1 or _POOL is None:
+        return
+    ex, n = _POOL
+    if getattr(ex, "_broken", False):
+        return
+    try:
+        _AHEAD.plan(ahead, store, own, chunk_size)
+    except Exception:  # the next call plans again and reports it
+        _AHEAD.queued.clear()
+        return
+    _AHEAD.top_up(ex, n)
+
+
 def _run_processes(chunks: list, workers: int, record: Callable,
                    adopted: Mapping[Future, tuple] | None = None,
-                   later: Callable[[], None] | None = None) -> None:
+                   later: Callable[[], None] | None = None,
+                   local: Sequence[tuple[Method, list[ContactCase]]] = ()) -> None:
     """Run ``chunks`` on local processes and ``record`` each result; ``adopted``: futures already
     running (started ahead), recorded like the others; ``later``: queues the next call's work
-    (``_Ahead``), started in the slots this call's chunks leave free at its end."""
+    (``_Ahead``), started in the slots this call's chunks leave free at its end; ``local``:
+    chunks solved in this process once the workers have theirs (inline methods, such as the
+    closed form), between which finished chunks are recorded and the workers fed."""
     workers = max(1, min(workers, max(len(chunks), 1), os.cpu_count() or 1))
     # the pool of an open worker_pool block, unless a worker of it died (a broken pool)
     shared = _POOL is not None and _POOL[1] >= workers and not getattr(_POOL[0], "_broken", False)
@@ -598,27 +625,37 @@ def _run_processes(chunks: list, workers: int, record: Callable,
             futures[ex.submit(solve_chunk, m, cs)] = (m, cs, time.perf_counter())
             if len(futures) >= 2 * workers:
                 break
+
+        def collect(f: Future) -> None:
+            nonlocal started_ahead
+            m, cs, t0 = futures.pop(f)
+            try:
+                res = f.result()
+            except Exception as exc:  # worker died: record the failure per case
+                msg = f"{type(exc).__name__}: {exc}\n{traceback.format_exc(limit=2)}"
+                res = [(None, msg)] * len(cs)
+            record(m, cs, res, time.perf_counter() - t0)
+            nxt = next(it, None)
+            if nxt is not None:
+                futures[ex.submit(solve_chunk, *nxt)] = (nxt[0], nxt[1], time.perf_counter())
+            elif ahead:  # this call's chunks are all out: the next call's fill the free slots
+                if not started_ahead:
+                    started_ahead = True
+                    try:
+                        later()  # type: ignore[misc]
+                    except Exception:  # the next call plans again and reports it
+                        _AHEAD.queued.clear()
+                _AHEAD.top_up(ex, _POOL[1])  # type: ignore[index]
+
+        for m, cs in local:  # this process's own chunks while the workers solve theirs
+            t0 = time.perf_counter()
+            record(m, cs, solve_chunk(m, cs), time.perf_counter() - t0)
+            for f in [f for f in futures if f.done()]:
+                collect(f)
         while futures:
             done, _ = wait(list(futures), return_when=FIRST_COMPLETED)
             for f in done:
-                m, cs, t0 = futures.pop(f)
-                try:
-                    res = f.result()
-                except Exception as exc:  # worker died: record the failure per case
-                    msg = f"{type(exc).__name__}: {exc}\n{traceback.format_exc(limit=2)}"
-                    res = [(None, msg)] * len(cs)
-                record(m, cs, res, time.perf_counter() - t0)
-                nxt = next(it, None)
-                if nxt is not None:
-                    futures[ex.submit(solve_chunk, *nxt)] = (nxt[0], nxt[1], time.perf_counter())
-                elif ahead:  # this call's chunks are all out: the next call's fill the free slots
-                    if not started_ahead:
-                        started_ahead = True
-                        try:
-                            later()  # type: ignore[misc]
-                        except Exception:  # the next call plans again and reports it
-                            _AHEAD.queued.clear()
-                    _AHEAD.top_up(ex, _POOL[1])  # type: ignore[index]
+                collect(f)
         clean = True
     finally:
         for f in futures:

@@ -118,6 +118,47 @@ def test_next_call_runs_ahead_and_is_adopted_once(tmp_path):
         assert out2.get(t.case, "fake").result["delta"] == serial.get(t.case, "fake").result["delta"]
 
 
+def test_call_with_nothing_to_solve_starts_the_next_calls_cases(tmp_path):
+    """A call whose results are all stored (a study re-using another's cases) gives the workers
+    nothing: the next call's cases start on them at once, and the next call adopts them."""
+    ahead = run_tasks.__globals__["_AHEAD"]
+    m = FakeMethod(delay=0.01)
+    cs = cases(8)
+    first, second = [Task(c, m) for c in cs[:3]], [Task(c, m) for c in cs[3:]]
+    with ResultStore(tmp_path / "s.sqlite", version="t") as st, worker_pool(2):
+        run_tasks(first, st, workers=1, progress=False)  # stored
+        out1 = run_tasks(first, st, workers=2, progress=False, chunk_size=1, ahead=lambda: second)
+        started = {c.label for _, chunk in [*ahead.running.values(), *ahead.queued] for c in chunk}
+        assert (out1.reused, out1.computed) == (3, 0)
+        assert started == {f"c{i}" for i in range(3, 8)}, started
+        out2 = run_tasks(second, st, workers=2, progress=False, chunk_size=1)
+        assert (out2.computed, out2.reused) == (5, 0) and st.count() == 8
+    assert not ahead.running and not ahead.queued
+
+
+def test_inline_chunks_run_while_the_workers_solve(tmp_path):
+    """Inline methods (the closed form) are solved in this process after the workers have their
+    chunks, not before: the workers' first cases start before this process's last one, and every
+    result is recorded once, equal to a serial run's."""
+    log = tmp_path / "log"
+    remote = FakeMethod(delay=0.05, log=str(log))
+    local = FakeMethod(name="local", delay=0.05, log=str(log))
+    cs = cases(6)
+    tasks = [Task(c, remote) for c in cs] + [Task(c, local) for c in cs]
+    with ResultStore(tmp_path / "s.sqlite", version="t") as st:
+        out = run_tasks(tasks, st, workers=2, progress=False, chunk_size=1, inline=("local",))
+        assert (out.computed, out.reused) == (12, 0) and st.count() == 12
+    with ResultStore(tmp_path / "r.sqlite", version="t") as ref:
+        serial = run_tasks(tasks, ref, workers=1, progress=False)
+    for t in tasks:
+        assert out.get(t.case, t.method).result["delta"] == serial.get(t.case, t.method).result["delta"]
+    lines = [ln.split() for ln in _log(log)[:12]]
+    parent = os.getpid()
+    first_worker = next(i for i, (_, pid) in enumerate(lines) if int(pid) != parent)
+    last_local = max(i for i, (_, pid) in enumerate(lines) if int(pid) == parent)
+    assert first_worker < last_local, lines
+
+
 def test_exception_injected_midway_loses_and_repeats_nothing(tmp_path):
     """Stop after k stored results (as a crash would), rerun: only the missing ones are solved."""
     log = tmp_path / "log"
