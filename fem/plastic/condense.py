@@ -28,7 +28,7 @@ iteration).
 
 The split is exact, not an approximation, as long as every ``E`` element has the elastic tangent
 (the assembler reports the elements whose tangent changed,
-:attr:`coathertz.fem.plastic.assembly.BBarAssembler.nonelastic`, and the elastic ones carry the
+``BBarAssembler.nonelastic``, and the elastic ones carry the
 same cached element matrices) and the contact's active set lies inside ``n`` off ``g``; when
 either fails the box is rebuilt larger (:data:`BOX_GROWTH` times what is needed). A box that
 would hold more than :data:`MAX_FRACTION` of the elements is not worth it: the caller then

@@ -46,10 +46,17 @@ def test_equal_lambda_kappa_give_equal_bars(E, nu_c, nu_s, nu_s2):
     assert max(abs(nu_c2 - nu_c), abs(nu_s2 - nu_s)) > 0.03
     np.testing.assert_allclose(constants_from_ratio(E, nu_c2, nu_s2), constants_from_ratio(E, nu_c, nu_s),
                                rtol=1e-12, atol=1e-12)
+    # The two parameterisations reach the kernel through different round-off. At H = 0.003 the
+    # exact method enriches its basis with edge functions and truncates their Gram matrix
+    # (axisym's GRAM_TOL): its p0 there is converged to a floor of a few 1e-9 (nested
+    # self-convergence, tests/axisym/test_thin_self_convergence.py), and which directions the
+    # truncation keeps follows round-off: measured 3e-10 to 8.3e-10 in p_bar. So p_bar of a thin
+    # coating is compared to the method's stated accuracy, 1e-8; everything else to 1e-10.
     for H in (0.003, 0.3, 3.0):
         b1, b2 = _bars(Point("elastic", E, H, nu_c, nu_s)), _bars(Point("elastic", E, H, nu_c2, nu_s2))
         for k in BARS:
-            assert b1[k] == pytest.approx(b2[k], rel=1e-10, abs=0), (H, k, b1[k] / b2[k] - 1)
+            rel = 1e-8 if (H < 0.01 and k == "p_bar") else 1e-10
+            assert b1[k] == pytest.approx(b2[k], rel=rel, abs=0), (H, k, b1[k] / b2[k] - 1)
 
 
 def test_different_s_gives_different_bars():

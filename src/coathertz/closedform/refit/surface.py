@@ -174,9 +174,9 @@ def evaluate_shared(surfaces: Sequence[Surface], X: np.ndarray) -> list[np.ndarr
     finishes. The product's inner dimension is the number of ``rest`` indices (hundreds for the
     tensor surfaces of the corrected form) and its output only ``(surfaces x degree) x chunk``,
     so it runs at matrix-product speed from cache; chunks of ``CHUNK`` to ``CHUNK_MAX`` points
-    keep ``W`` within :data:`W_DOUBLES` values (one core's L2 cache).
+    keep ``W`` within ``W_DOUBLES`` values (one core's L2 cache).
     The matrix of coefficients and the index maps are built once per set of surfaces
-    (:class:`_Plan`); tables, ``W`` and the product are written into buffers reused chunk by
+    (``_Plan``); tables, ``W`` and the product are written into buffers reused chunk by
     chunk (no temporaries: the evaluation rate is that of the matrix product plus a few
     element-wise passes, ``tests/benchmarks/bench_refit.py``).
     """
@@ -191,7 +191,7 @@ _PLANS: dict[tuple[int, ...], tuple[tuple[Surface, ...], _Plan]] = {}
 
 
 def _plan(surfaces: tuple[Surface, ...]) -> _Plan:
-    """The cached :class:`_Plan` of ``surfaces`` (keyed by identity; the surfaces are kept alive
+    """The cached ``_Plan`` of ``surfaces`` (keyed by identity; the surfaces are kept alive
     with it, so an identity is never reused while cached)."""
     key = tuple(id(s) for s in surfaces)
     hit = _PLANS.get(key)
