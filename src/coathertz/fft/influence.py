@@ -33,7 +33,8 @@ numerically in one of two ways:
 * ``h < H_SWITCH`` cells (thin layers): sampled on a 2x over-sampled frequency grid (period
   ``4 nx dx``: the nearest image lies ``3 nx dx >= 12 h`` away, and the ``r^-5`` tail makes
   images negligible) and multiplied by the cell's transform ``sinc(kx dx/2) sinc(ky dy/2)``
-  before the inverse FFT. Truncation at the Nyquist frequency matters only when ``h < dx``.
+  before the inverse transform (a 2-D DCT-I of the quadrant ``kx, ky >= 0``: the samples are
+  even). Truncation at the Nyquist frequency matters only when ``h < dx``.
   Then the remainder kernel is narrower than a cell and has zero mean, and its exact cell
   integrals are ``O((h/dx)^3)`` small.
 * ``h >= H_SWITCH`` cells: a radial Hankel transform
@@ -211,35 +212,30 @@ def _split_of(layer: Layer | StackFRF) -> LayerSplit:
 
 
 def _remainder_kspace(split, h, nx, ny, dx, dy, oversample=2):
+    """The remainder's cell-integrated kernel / ``(2 h / Ec*)`` on the quadrant, by the inverse
+    transform of its samples on a frequency grid of period ``oversample * 2 n`` cells.
+
+    The samples are even in ``kx`` and ``ky``, so the inverse 2-D FFT of the ``My x Mx`` grid is
+    the (unnormalised) 2-D DCT-I of its ``(My/2 + 1) x (Mx/2 + 1)`` quadrant divided by
+    ``Mx My``: the same numbers to round-off (1e-16 of the largest) from a quarter of the
+    samples, about twice as fast at n = 128 (the remainder's evaluation dominates).
+    """
     Mx, My = oversample * 2 * nx, oversample * 2 * ny
-    kx = 2 * np.pi * sfft.rfftfreq(Mx, dx)
-    ky = 2 * np.pi * sfft.fftfreq(My, dy)
-    g_hat = _radial_on_grid(lambda k: split.remainder(k * h), kx, ky)
+    kx = 2 * np.pi * sfft.rfftfreq(Mx, dx)  # 0 .. Mx/2
+    ky = 2 * np.pi * np.abs(sfft.fftfreq(My, dy)[: My // 2 + 1])  # 0 .. My/2
+    g_hat = _radial_quadrant(lambda k: split.remainder(k * h), kx, ky)
     g_hat *= np.sinc(kx * dx / (2 * np.pi))[None, :]
     g_hat *= np.sinc(ky * dy / (2 * np.pi))[:, None]
-    g = sfft.irfft2(g_hat, s=(My, Mx))  # cell-integrated kernel / (2 h / Ec*)
+    g = sfft.dctn(g_hat, type=1) / (Mx * My)  # cell-integrated kernel / (2 h / Ec*)
     return g[: ny + 1, : nx + 1]
 
 
-def _radial_on_grid(fun, kx: np.ndarray, ky: np.ndarray) -> np.ndarray:
-    """``fun(hypot(kx, ky))`` on the grid ``ky[:, None] x kx[None, :]`` (``kx = rfftfreq``,
-    ``ky = fftfreq`` of an even length, times ``2 pi / d``), ``fun`` elementwise.
-
-    ``fun`` is evaluated once per distinct point of the quadrant ``ky >= 0`` (the rows of
-    ``-ky`` hold the same ``|k|`` bitwise: ``fftfreq`` negates integer multiples) and, when the
-    quadrant is square with equal frequencies (``dx = dy``, ``nx = ny``), only on its upper
-    triangle (``hypot`` is symmetric): a quarter of the evaluations, bitwise the same values.
-    """
-    My = ky.size
-    if My % 2:  # pragma: no cover - the callers' lengths are even
-        return fun(np.hypot(kx[None, :], ky[:, None]))
-    half = My // 2
-    kyq = np.abs(ky[: half + 1])  # 0 .. My/2 (the last one is -My/2's magnitude)
-    if kyq.size == kx.size and np.array_equal(kyq, kx):
-        q = _radial_symmetric(fun, kx)
-    else:
-        q = fun(np.hypot(kx[None, :], kyq[:, None]))
-    return np.concatenate([q, q[half - 1 : 0 : -1]], axis=0)
+def _radial_quadrant(fun, kx: np.ndarray, ky: np.ndarray) -> np.ndarray:
+    """``fun(hypot(kx, ky))`` on ``ky[:, None] x kx[None, :]``, ``fun`` elementwise; evaluated
+    on the upper triangle only when ``kx`` and ``ky`` are equal (bitwise the same values)."""
+    if kx.size == ky.size and np.array_equal(kx, ky):
+        return _radial_symmetric(fun, kx)
+    return fun(np.hypot(kx[None, :], ky[:, None]))
 
 
 def _radial_symmetric(fun, x: np.ndarray) -> np.ndarray:

@@ -113,6 +113,22 @@ SUB_CELL_MEASURED_E_MIN, SUB_CELL_MEASURED_E_MAX = 0.25, 10.0
 PRECONDITION_COARSE_MIN_N = 128
 
 
+#: Cells whose pressure is below this fraction of the peak do not count in the contact extent
+#: (and axes) that decide the re-gridding (:meth:`FFTMethod._refit`): the decision is discrete
+#: (one cell more or less), and an edge cell at round-off level (a change of kernel
+#: coefficients by 1e-16 moves the pressures by up to ~1e-6 of the peak through the iteration,
+#: tolerance 1e-6) flipped it once (a moved by 1.9e-4). 1e-4 leaves a margin of 100 over that;
+#: a Hertzian edge cell falls below it only within 5e-9 a of the edge.
+DECISION_FLOOR = 1e-4
+
+
+def settled_contact(p: np.ndarray) -> np.ndarray:
+    """``p`` with the cells below :data:`DECISION_FLOOR` of its peak set to 0 (the contact the
+    re-gridding decisions look at; results use ``p`` itself)."""
+    top = float(np.max(p)) if p.size else 0.0
+    return np.where(p >= DECISION_FLOOR * top, p, 0.0) if top > 0 else p
+
+
 def coefficients(body: Body, grid: Grid, interface: str = "bonded") -> np.ndarray:
     """Quadrant coefficients of one body on ``grid``, cached per (body, grid, interface)."""
     key = (body, grid.key(), interface)
@@ -521,9 +537,10 @@ class FFTMethod:
         probe = probe and nested and len(cases) == 1
         if probe:
             p_c, cost = self._coarse_start(cases, grid, be)
-            if np.any(p_c[0] > 0):
-                ext = estimators.contact_extent(p_c[0], grid)
-                new = self._refit(ext, estimators.moment_axes(p_c[0], grid), grid)
+            p_d = settled_contact(p_c[0])
+            if np.any(p_d > 0):
+                ext = estimators.contact_extent(p_d, grid)
+                new = self._refit(ext, estimators.moment_axes(p_d, grid), grid)
                 if new is not None:  # start from the probe, interpolated to the new grid
                     p_c = [prolong_pressure(p_c[0], grid, new)]
                     probe_cost, moved, grid = cost, True, new
@@ -578,7 +595,7 @@ class FFTMethod:
                 fit = estimators.edge_fit_axes(p, grid, ra_m, rb_m)
                 fit_name = "pressure-fit"
             ra_f, rb_f = fit if fit is not None else (ra_m, rb_m)
-            ext_x, ext_y = estimators.contact_extent(p, grid)
+            ext_x, ext_y = estimators.contact_extent(settled_contact(p), grid)  # drives re-gridding
             use_fit = self.radius == "edge-fit" and fit is not None
             ra, rb = (ra_f, rb_f) if use_fit else (ra_m, rb_m)
             i0 = np.unravel_index(int(np.argmax(p)), p.shape)
