@@ -124,7 +124,8 @@ class ContactGeometry:
     a_hint: Callable[[float], float] | None = None  # contact radius guess for a load (first contact)
     grid: tuple[np.ndarray, np.ndarray] | None = None  # grid node of every dof (nested-dissection LU)
     condensation: object = None  # the elastic far field's condensation, shared by the paths on this model
-    solves: dict = field(default_factory=lambda: {"condensed": 0, "full": 0, "condensations": 0, "reused": 0})
+    solves: dict = field(default_factory=lambda: {"condensed": 0, "full": 0, "condensations": 0, "reused": 0,
+                                                   "t_solves": 0, "t_reused": 0})
 
 
 def geometry_of(model, g0_fun: Callable[[np.ndarray], np.ndarray],
@@ -234,9 +235,11 @@ class IncrementalContact:
             g.solves["full"] += 1
             return _solve_constrained(K, rhs, fixed, vals, g.grid)
         g.solves["condensed"] += 1
-        reused = c.reused
-        out = c.solve(K, rhs, fixed, vals)
-        g.solves["reused"] += c.reused - reused
+        keys = ("reused", "t_solves", "t_reused")
+        before = [getattr(c, k) for k in keys]
+        out = c.solve(K, rhs, fixed, vals, self.scale)
+        for k, b in zip(keys, before, strict=True):
+            g.solves[k] += getattr(c, k) - b
         return out
 
     def _condense(self, nonelastic, active, old):
