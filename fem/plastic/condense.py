@@ -129,6 +129,7 @@ class ElasticCondensation:
         self.ne, self.ng = len(self.e), len(self.g)
         self.n_box = int(self.n_mask.sum())
         self.Di, self.Dj = np.nonzero(np.ones_like(self.D, dtype=bool))
+        self._template(KE)
         self._last = None  # (order, tangent data, factors) of the last box factorisation
         self.reused = 0  # box factorisations reused (the same tangent and active set)
         self._tmemo: list = []  # (b_e, t) of the last solve's right-hand sides
@@ -181,36 +182,62 @@ class ElasticCondensation:
         Bm = np.column_stack(rhs) - K @ U0
         is_fixed = np.zeros(n, dtype=bool)
         is_fixed[fixed] = True
-        order = self.order[~is_fixed[self.order]]  # g stays last: none of it is fixed
-        off = len(order) - self.ng
+        fixed_box = is_fixed[self.order]  # the active contact dofs (g stays last: none of it is fixed)
+        off = len(self.order) - self.ng
         last = self._last
-        same_order = last is not None and np.array_equal(last[0], order)  # the same active set
         be = Bm[self.e]
         t = self._t(be, force_scale)
-        bn = Bm[order]
+        bn = Bm[self.order]
+        bn[fixed_box] = 0.0
         bn[off:] -= t
-        if same_order and np.array_equal(last[1], K.data):
+        if last is not None and np.array_equal(last[0], fixed_box) and np.array_equal(last[1], K.data):
             lu = last[2]  # the same tangent and active set (elastic unloading): the same factors
             self.reused += 1
         else:
-            lu = spla.splu(self._box_matrix(K, order, off), permc_spec="NATURAL", diag_pivot_thresh=0.01,
+            lu = spla.splu(self._box_matrix(K, fixed_box), permc_spec="NATURAL", diag_pivot_thresh=0.01,
                            options={"SymmetricMode": True})
-            self._last = (order, K.data.copy(), lu)
+            self._last = (fixed_box, K.data.copy(), lu)
         un = lu.solve(bn)
         ug = un[off:]
         xe = self.factor.solve(np.vstack([be, t + self.S @ ug]))[: self.ne]
         U = U0
-        U[order] = un
+        free = ~fixed_box
+        U[self.order[free]] = un[free]
         U[self.e] = xe
         return [U[:, k].copy() for k in range(m)]
 
-    def _box_matrix(self, K: sp.csr_matrix, order: np.ndarray, off: int) -> sp.csc_matrix:
-        """The box's matrix ``K_nn - K_ge K_ee^-1 K_eg`` in ``order`` (``g`` last, from ``off``)."""
-        Kp = K[order][:, order].tocoo()
-        rows = np.concatenate([Kp.row, self.Di + off])
-        cols = np.concatenate([Kp.col, self.Dj + off])
-        data = np.concatenate([Kp.data, -self.D.ravel()])
-        return sp.coo_matrix((data, (rows, cols)), shape=Kp.shape).tocsc()
+    def _template(self, KE: sp.csr_matrix) -> None:
+        """The box matrix's CSC structure in :attr:`order` (the tangent's entries on the box and the
+        dense ``g x g`` block) and where each tangent entry and each entry of ``D`` goes in it."""
+        N, off = len(self.order), len(self.order) - self.ng
+        pos = sp.csr_matrix((np.arange(1, KE.nnz + 1, dtype=float), KE.indices, KE.indptr), shape=KE.shape)
+        Kp = pos[self.order][:, self.order].tocoo()
+        self._kpos = Kp.data.astype(np.int64) - 1  # the entry's place in the tangent's CSR data
+        rows = np.concatenate([Kp.row, self.Di + off]).astype(np.int64)
+        cols = np.concatenate([Kp.col, self.Dj + off]).astype(np.int64)
+        keys, slot = np.unique(cols * N + rows, return_inverse=True)
+        self._kslot, self._dslot = slot[: len(Kp.data)], slot[len(Kp.data):]
+        self._indices = (keys % N).astype(np.int32)
+        self._indptr = np.r_[0, np.cumsum(np.bincount(keys // N, minlength=N))].astype(np.int32)
+        self._slot_col = np.repeat(np.arange(N), np.diff(self._indptr))
+        diag = np.flatnonzero(self._indices == self._slot_col)
+        self._diag = np.empty(N, dtype=np.int64)
+        self._diag[self._indices[diag]] = diag
+        self._Dflat = self.D.ravel()
+
+    def _box_matrix(self, K: sp.csr_matrix, fixed_box: np.ndarray) -> sp.csc_matrix:
+        """The box's matrix ``K_nn - K_ge K_ee^-1 K_eg`` in :attr:`order` (``g`` last), the rows
+        and columns of the active contact dofs ``fixed_box`` decoupled (their diagonal entry kept,
+        right-hand side 0): one gather from the tangent's data into the stored structure."""
+        data = np.zeros(len(self._indices))
+        data[self._kslot] = K.data[self._kpos]
+        data[self._dslot] -= self._Dflat
+        if fixed_box.any():
+            d = data[self._diag[fixed_box]]
+            data[fixed_box[self._indices] | fixed_box[self._slot_col]] = 0.0
+            data[self._diag[fixed_box]] = d
+        N = len(self.order)
+        return sp.csc_matrix((data, self._indices, self._indptr), shape=(N, N))
 
 
 def box_for(boxes: ElementBoxes, nonelastic: np.ndarray, r_active: float, s0: float,
