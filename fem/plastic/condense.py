@@ -24,7 +24,9 @@ zero ``b_e`` nor for one equal to the last solve's):
 ``y = u_g``, ``x = u_e``. Per Newton iteration only the sparse ``n`` block (plus the dense
 ``g x g`` block, ordered last) is factorised, and not even that when the tangent and the
 active set are those of the last solve (elastic unloading: the next increment's first
-iteration).
+iteration). The box's matrix is gathered from the tangent's data into a structure built once per
+box; the rows and columns of the active contact dofs are decoupled there (diagonal kept,
+right-hand side 0) rather than sliced out, so that the structure does not depend on the active set.
 
 The split is exact, not an approximation, as long as every ``E`` element has the elastic tangent
 (the assembler reports the elements whose tangent changed,
@@ -120,7 +122,7 @@ class ElasticCondensation:
         self.S = self.factor.S
         KEg = KE.tocsr()[self.g][:, self.g].toarray()
         self.D = KEg - self.S  # K_ge K_ee^-1 K_eg, subtracted from the box's block on g
-        # nested dissection of the box's dofs, g last; the active contact dofs are dropped per solve
+        # nested dissection of the box's dofs, g last; the active contact dofs are decoupled per solve
         in_g = np.zeros(n, dtype=bool)
         in_g[self.g] = True
         nb = np.flatnonzero(self.n_mask & ~in_g)
