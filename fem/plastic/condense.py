@@ -45,6 +45,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from coathertz.errors import CoatHertzError
 from coathertz.fem.ordering import nested_dissection
 from coathertz.fem.solvers import CondensedFactor
 
@@ -215,6 +216,7 @@ class ElasticCondensation:
         pos = sp.csr_matrix((np.arange(1, KE.nnz + 1, dtype=float), KE.indices, KE.indptr), shape=KE.shape)
         Kp = pos[self.order][:, self.order].tocoo()
         self._kpos = Kp.data.astype(np.int64) - 1  # the entry's place in the tangent's CSR data
+        self._nnz = KE.nnz
         rows = np.concatenate([Kp.row, self.Di + off]).astype(np.int64)
         cols = np.concatenate([Kp.col, self.Dj + off]).astype(np.int64)
         keys, slot = np.unique(cols * N + rows, return_inverse=True)
@@ -231,6 +233,8 @@ class ElasticCondensation:
         """The box's matrix ``K_nn - K_ge K_ee^-1 K_eg`` in :attr:`order` (``g`` last), the rows
         and columns of the active contact dofs ``fixed_box`` decoupled (their diagonal entry kept,
         right-hand side 0): one gather from the tangent's data into the stored structure."""
+        if K.nnz != self._nnz:  # the gather needs the tangent's fixed sparsity (the assembler's)
+            raise CoatHertzError("elastic condensation: the tangent's sparsity changed (internal error)")
         data = np.zeros(len(self._indices))
         data[self._kslot] = K.data[self._kpos]
         data[self._dslot] -= self._Dflat
