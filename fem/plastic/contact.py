@@ -37,7 +37,14 @@ Measured on the shared 2-core machine (CPU time, both in one run,
 path (``--unload --steps 10``, 78 iterations) 11.4 s against 26.1 s, its approach path with
 unloading (20 um, 95 iterations) 15.0 s against 32.6 s; the same loads to 1e-14. Of the 15.7 s
 CPU of the approach path: the box factorisations 5.3 s, the solves with the far field's factor and
-the box's slicing 3.6 s, the assembly 3.8 s, the condensations 0.9 s. Tried and dropped:
+the box's slicing 3.6 s, the assembly 3.8 s, the condensations 0.9 s (since then the box matrix
+is gathered, not sliced, and ``t`` is not solved again within an increment where ``b_e`` changed by
+round-off only: the same path 16.0 -> 14.8 s CPU, same run). Tried and dropped: GMRES on the box
+system right-preconditioned with the box's last factorisation (same active set; true residual
+1e-12 of the right-hand side, at most 12 iterations, else factorised again): on the README load
+path 21 attempts, 10 gave up, 275 preconditioner solves at ~3.4 ms against ~57 ms a factorisation,
+CPU 12.7 -> 14.4 s (slower; a perfectly plastic tangent changes at many points between
+iterations, so the Krylov space needs about as many solves as a factorisation costs);
 starting each increment from the displacement extrapolated from the last (88 -> 92 iterations on
 the coarse approach path); its first iteration with the last increment's converged tangent instead
 of the committed state's (elastic on the yield surface): coarse mesh, approach path 88 -> 84, load
@@ -124,7 +131,8 @@ class ContactGeometry:
     a_hint: Callable[[float], float] | None = None  # contact radius guess for a load (first contact)
     grid: tuple[np.ndarray, np.ndarray] | None = None  # grid node of every dof (nested-dissection LU)
     condensation: object = None  # the elastic far field's condensation, shared by the paths on this model
-    solves: dict = field(default_factory=lambda: {"condensed": 0, "full": 0, "condensations": 0, "reused": 0})
+    solves: dict = field(default_factory=lambda: {"condensed": 0, "full": 0, "condensations": 0, "reused": 0,
+                                                   "t_solves": 0, "t_reused": 0})
 
 
 def geometry_of(model, g0_fun: Callable[[np.ndarray], np.ndarray],
@@ -234,9 +242,11 @@ class IncrementalContact:
             g.solves["full"] += 1
             return _solve_constrained(K, rhs, fixed, vals, g.grid)
         g.solves["condensed"] += 1
-        reused = c.reused
-        out = c.solve(K, rhs, fixed, vals)
-        g.solves["reused"] += c.reused - reused
+        keys = ("reused", "t_solves", "t_reused")
+        before = [getattr(c, k) for k in keys]
+        out = c.solve(K, rhs, fixed, vals, self.scale)
+        for k, b in zip(keys, before, strict=True):
+            g.solves[k] += getattr(c, k) - b
         return out
 
     def _condense(self, nonelastic, active, old):

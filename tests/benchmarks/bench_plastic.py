@@ -36,7 +36,18 @@ thread, shared 2-core machine at load 5-6):
   197 solves factorised the whole tangent); 45.1 s CPU with the cap at 90 % (all 197 condensed;
   a separate run); 21 increments, 197 iterations, 0 failed solves, largest load 364.433 N.
 
-The targets (3 s, 30 s) are not reached: the box's factorisation (up to 12k unknowns), two solves
+Box matrix gathered into a structure built once per box, and ``t`` not solved again where
+``b_e`` changed by round-off only (``T_REUSE`` in ``condense.py``); before (the previous
+``condense.py``) and after in one process, 1 BLAS thread, the shared 2-core machine:
+
+- README load path: 14.2 -> 14.0 s and 11.5 -> 9.9 s CPU (two pairs), 78 iterations, far-field
+  solves for ``t`` 78 -> 62 (78 with ``T_REUSE = 0``), same load and residual depth 246.28 nm;
+- README approach path with unloading: 16.0 -> 14.8 s and 16.1 -> 15.2 s CPU, 95 iterations,
+  largest load 1925.978 N, residual depth 9158.09 nm both;
+- delta/delta_c = 200 (E/Y = 1000, 20 steps): 43.1 -> 40.8 s CPU, 197 iterations, largest load
+  364.433 N both.
+
+The targets (3 s, 30 s) are not reached: the box's factorisation (up to 12k unknowns), one or two solves
 with the far field's factor and the assembly (~40 ms) per iteration remain, at 4-10 iterations
 per increment.
 
