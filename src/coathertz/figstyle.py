@@ -144,6 +144,7 @@ def _write(fig, paths: Sequence[Path]) -> None:
     engine = fig.get_layout_engine() is not None
     _tight_once(fig)
     _plain_log_labels(fig)
+    _log_ticks_in_view(fig)
     title = getattr(fig, "_suptitle", None)  # matplotlib keeps the suptitle's Text here
     if engine and title is not None:
         title.set_wrap(True)
@@ -201,6 +202,45 @@ def _plain_log_formatter_class():
             return plain_power(super().__call__(x, pos))
 
     return PlainLogFormatter
+
+
+def _log_ticks_in_view(fig) -> None:
+    """Let every log axis of ``fig`` with matplotlib's ``LogLocator`` return only the ticks in
+    its view: matplotlib makes a tick (two marks, a grid line, two labels) for every location its
+    locator returns, whole decades beyond both ends included (a third of the minor ticks of the
+    report's log axes), and then draws only those in view. The ticks drawn are the same."""
+    from matplotlib.ticker import LogLocator
+
+    for ax in fig.axes:
+        for axis in (ax.xaxis, ax.yaxis):
+            for loc in (axis.get_major_locator(), axis.get_minor_locator()):
+                if type(loc) is LogLocator:
+                    loc.__class__ = _in_view_log_locator_class()  # keeps its settings
+
+
+@functools.cache
+def _in_view_log_locator_class():
+    from matplotlib.ticker import LogLocator
+
+    class InViewLogLocator(LogLocator):
+        """:class:`~matplotlib.ticker.LogLocator` leaving out the ticks beyond its axis' view
+        (see :func:`_log_ticks_in_view`)."""
+
+        def __call__(self):
+            locs = super().__call__()
+            axis = self.axis
+            if axis is None or len(locs) == 0:
+                return locs
+            # the axis keeps ticks within 1e-10 of the view's span (in the scale's coordinates);
+            # a wider margin keeps a superset, so the same ticks are drawn
+            lo, hi = sorted(axis.get_transform().transform(axis.get_view_interval()))
+            with np.errstate(all="ignore"):
+                t = axis.get_transform().transform(np.asarray(locs, dtype=float))
+            margin = 1e-6 * (hi - lo)
+            keep = (t >= lo - margin) & (t <= hi + margin)
+            return np.asarray(locs)[keep] if np.isfinite(t).all() else locs
+
+    return InViewLogLocator
 
 
 def _tight_once(fig) -> None:

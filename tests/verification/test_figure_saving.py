@@ -9,7 +9,7 @@ import time
 import pytest
 
 from coathertz.errors import CoatHertzError
-from coathertz.figstyle import figure, save, saving
+from coathertz.figstyle import figure, plain_power, save, saving
 
 
 def _draw(label: str):
@@ -218,3 +218,24 @@ def test_log_axes_are_labelled_in_plain_text(tmp_path):
         got = [t.get_text() for t in ax.get_yticklabels() if ax.get_ylim()[0] <= t.get_position()[1]
                <= ax.get_ylim()[1]]
         assert got == want, got
+
+
+def test_log_axes_make_only_the_ticks_in_view(tmp_path):
+    """A saved figure's log axes draw the same ticks as matplotlib's default locator, having made
+    Tick objects for those in view only (not for the decades beyond both ends)."""
+    drawn, made = [], []
+    for ours in (False, True):
+        fig = _draw("log")
+        fig.axes[0].set_xscale("log")
+        fig.axes[0].set_xlim(0.013, 3.1)
+        fig.set_layout_engine("tight")
+        if ours:
+            save(fig, tmp_path, "log")
+        else:
+            fig.canvas.draw()
+        axis = fig.axes[0].xaxis
+        drawn.append([(t.get_loc(), t.label1.get_text()) for t in axis._update_ticks()])
+        made.append(len(axis.majorTicks) + len(axis.minorTicks))
+    assert drawn[1] == [(loc, plain_power(s)) for loc, s in drawn[0]]
+    # 0.1 and 1; 0.02-0.09, 0.2-0.9, 2 and 3
+    assert len(drawn[0]) == 20 and made[0] > 20 and made[1] == 20, (drawn, made)
