@@ -142,9 +142,7 @@ def _write(fig, paths: Sequence[Path]) -> None:
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
     engine = fig.get_layout_engine() is not None
-    _tight_once(fig)
-    _plain_log_labels(fig)
-    _log_ticks_in_view(fig)
+    _prepare(fig)
     title = getattr(fig, "_suptitle", None)  # matplotlib keeps the suptitle's Text here
     if engine and title is not None:
         title.set_wrap(True)
@@ -292,6 +290,15 @@ def _tight_once_engine_class():
                     del ax.get_tightbbox
 
     return TightOnceEngine
+
+
+def _prepare(fig) -> None:
+    """Make ``fig`` cheaper to draw, its pixels read the same: one measurement per panel in the
+    tight layout (:func:`_tight_once`), plain-text log tick labels (:func:`_plain_log_labels`),
+    log ticks made only in view (:func:`_log_ticks_in_view`)."""
+    _tight_once(fig)
+    _plain_log_labels(fig)
+    _log_ticks_in_view(fig)
 
 
 def _write_png_drawn(fig, path: Path) -> None:
