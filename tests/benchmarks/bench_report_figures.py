@@ -55,6 +55,7 @@ def main() -> None:
     def timed(fig, paths):
         t = time.process_time()
         if args.split:
+            figstyle._prepare(fig)  # as _write does
             engine = fig.get_layout_engine()
             fig.set_dpi(figstyle.PNG_DPI)
             title = getattr(fig, "_suptitle", None)

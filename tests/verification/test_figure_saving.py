@@ -9,7 +9,7 @@ import time
 import pytest
 
 from coathertz.errors import CoatHertzError
-from coathertz.figstyle import figure, save, saving
+from coathertz.figstyle import figure, plain_power, save, saving
 
 
 def _draw(label: str):
@@ -150,3 +150,92 @@ def test_failed_render_leaves_no_record(tmp_path, capfd):
     with pytest.raises(CoatHertzError), saving(jobs=2):
         plot_study(_Result(5.0), Broken, tmp_path)
     assert "toy" not in (tmp_path / FIGURE_KEYS).read_text()
+
+
+def test_tight_layout_measures_each_panel_once(tmp_path, monkeypatch):
+    """The engine :func:`~coathertz.figstyle.save` lays a tight figure out with gives matplotlib's
+    tight layout's subplot parameters exactly, measuring each panel once instead of twice."""
+    from matplotlib.axes import Axes
+
+    from coathertz.figstyle import _tight_once
+
+    calls = []
+    real = Axes.get_tightbbox
+
+    def counted(self, *args, **kwargs):
+        calls.append(self)
+        return real(self, *args, **kwargs)
+
+    monkeypatch.setattr(Axes, "get_tightbbox", counted)
+    params = []
+    for once in (False, True):
+        fig = _draw("layout")
+        fig.axes[0].set_yscale("log")
+        fig.axes[0].set_ylim(1e-3, 10)
+        fig.suptitle("a title", fontsize=10)
+        fig.set_layout_engine("tight", pad=0.5)
+        if once:
+            _tight_once(fig)
+        calls.clear()
+        fig.get_layout_engine().execute(fig)
+        sp = fig.subplotpars
+        params.append(((sp.left, sp.right, sp.bottom, sp.top, sp.wspace, sp.hspace), len(calls)))
+        assert fig.get_layout_engine().get()["pad"] == 0.5
+    (theirs, n_theirs), (ours, n_ours) = params
+    assert ours == theirs  # exactly: the same boxes, the same arithmetic
+    assert (n_theirs, n_ours) == (4, 2)
+    assert "get_tightbbox" not in vars(fig.axes[0])  # the panels are left as they were
+
+
+@pytest.mark.parametrize(("math", "plain"), [
+    (r"$\mathdefault{10^{-1}}$", "10⁻¹"),
+    (r"$\mathdefault{10^{12}}$", "10¹²"),
+    (r"$\mathdefault{-10^{0}}$", "\N{MINUS SIGN}10⁰"),
+    (r"$\mathdefault{0}$", "0"),
+    (r"$\mathdefault{2\times10^{-3}}$", "2×10⁻³"),
+    (r"$\alpha_\delta$", r"$\alpha_\delta$"),  # not a tick label of a log axis: unchanged
+    ("", ""),
+])
+def test_plain_power_labels(math, plain):
+    from coathertz.figstyle import plain_power
+
+    assert plain_power(math) == plain
+
+
+def test_log_axes_are_labelled_in_plain_text(tmp_path):
+    """A saved figure's log and symmetric-log axes label the same ticks as matplotlib's default,
+    in plain text (no mathtext)."""
+    fig = _draw("log")
+    fig.axes[0].set_yscale("log")
+    fig.axes[0].set_ylim(1e-3, 10)
+    fig.axes[1].set_yscale("symlog", linthresh=0.1)
+    fig.axes[1].set_ylim(-10, 10)
+    fig.set_layout_engine("tight")
+    save(fig, tmp_path, "log")
+    for ax, want in zip(fig.axes, (["10⁻³", "10⁻²", "10⁻¹", "10⁰", "10¹"],
+                                   ["\N{MINUS SIGN}10¹", "\N{MINUS SIGN}10⁰", "\N{MINUS SIGN}10⁻¹",
+                                    "0", "10⁻¹", "10⁰", "10¹"]), strict=True):
+        got = [t.get_text() for t in ax.get_yticklabels() if ax.get_ylim()[0] <= t.get_position()[1]
+               <= ax.get_ylim()[1]]
+        assert got == want, got
+
+
+def test_log_axes_make_only_the_ticks_in_view(tmp_path):
+    """A saved figure's log axes draw the same ticks as matplotlib's default locator, having made
+    Tick objects for those in view only (not for the decades beyond both ends)."""
+    drawn, made = [], []
+    for ours in (False, True):
+        fig = _draw("log")
+        fig.axes[0].set_xscale("log")
+        fig.axes[0].set_xlim(0.013, 3.1)
+        fig.set_layout_engine("tight")
+        if ours:
+            save(fig, tmp_path, "log")
+        else:
+            fig.canvas.draw()
+        axis = fig.axes[0].xaxis
+        drawn.append([(t.get_loc(), t.label1.get_text()) for t in axis._update_ticks()])
+        made.append(len(axis.majorTicks) + len(axis.minorTicks))
+    assert drawn[1] == [(loc, plain_power(s)) for loc, s in drawn[0]]
+    # 0.1 and 1; 0.02-0.09, 0.2-0.9, 2 and 3
+    assert len(drawn[0]) == 20 and made[0] > 20 and made[1] == 20, (drawn, made)
