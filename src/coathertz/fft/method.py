@@ -114,7 +114,7 @@ PRECONDITION_COARSE_MIN_N = 128
 
 
 #: Cells whose pressure is below this fraction of the peak do not count in the contact extent
-#: (and axes) that decide the re-gridding (:meth:`FFTMethod._refit`): the decision is discrete
+#: (and axes) that decide the re-gridding (``FFTMethod._refit``): the decision is discrete
 #: (one cell more or less), and an edge cell at round-off level (a change of kernel
 #: coefficients by 1e-16 moves the pressures by up to ~1e-6 of the peak through the iteration,
 #: tolerance 1e-6) flipped it once (a moved by 1.9e-4). 1e-4 leaves a margin of 100 over that;
