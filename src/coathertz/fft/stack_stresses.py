@@ -222,10 +222,7 @@ class StackStressFRF:
                 if prev.interface == "frictionless":
                     alpha = np.zeros(n)
                 else:
-                    a0, b0 = anti[-1][:, 0], anti[-1][:, 1]
-                    e0 = np.exp(-w * prev.h)
-                    V_bot = (a0 * e0 + b0) * (L.material.G / prev.material.G)
-                    S_bot = -a0 * e0 + b0
+                    V_bot, S_bot = _passed_down(anti[-1], prev, L.material.G, w)
                     alpha = np.where(rho >= 0, V_bot / (1.0 + rho * e * e),
                                      -S_bot / (1.0 - rho * e * e))
             anti.append(np.stack([alpha, rho * alpha * e], axis=-1))
@@ -235,9 +232,7 @@ class StackStressFRF:
             if last.interface == "frictionless":
                 anti_sub = np.zeros(n)
             else:
-                a0, b0 = anti[-1][:, 0], anti[-1][:, 1]
-                e0 = np.exp(-w * last.h)
-                anti_sub = (a0 * e0 + b0) * (self.substrate.G / last.material.G)
+                anti_sub = _passed_down(anti[-1], last, self.substrate.G, w)[0]
         def cont(a):  # (n, ...) -> (..., n), contiguous along w
             return None if a is None else np.ascontiguousarray(np.moveaxis(a, 0, -1))
 
@@ -293,3 +288,14 @@ class StackStressFRF:
             out.append((f0 - 2.0 * m1, (-2.0 * nu) * m1, -f0, m1 - f0))
         V = coef.anti_sub * e1
         return StressRows(out[0], out[1], (V, -V))
+
+
+def _passed_down(anti_above: np.ndarray, above, G_below: float,
+                 w: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Antiplane state handed across the bonded lower face of the layer ``above`` (coefficients
+    ``anti_above[:, 0]``, ``anti_above[:, 1]`` of its decaying and growing parts): the displacement
+    scaled to the next medium's shear modulus ``G_below`` (continuity of displacement in the
+    ``G``-normalised amplitudes) and the shear it carries."""
+    a0, b0 = anti_above[:, 0], anti_above[:, 1]
+    e0 = np.exp(-w * above.h)
+    return (a0 * e0 + b0) * (G_below / above.material.G), -a0 * e0 + b0
