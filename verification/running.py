@@ -87,26 +87,42 @@ def plan(cases: Sequence[Any], methods: Mapping[str, Any], variants: Mapping[str
 
 
 def study_tasks(module, resolution: str, methods: Mapping[str, Any]) -> list:
-    """The (case, method) tasks :func:`run_study` gives the runner first for ``module`` (its
-    reference refinements, which depend on their results, come later): what a run may start
-    ahead while the study before it is analysed (``run_tasks(..., ahead=...)``)."""
+    """The (case, method) tasks :func:`run_study` gives the runner for ``module``: its cases, then
+    its reference refinements as they will be asked for if every reference solve succeeds (they
+    are chosen from the results): what a run may start ahead while the study before it is
+    analysed (``run_tasks(..., ahead=...)``). A refinement predicted wrongly is solved and
+    stored for nothing; the study asks for its own."""
     from coathertz.runner import Task
 
     variants, _ = variants_of(module, methods, resolution)
-    todo, _ = plan(module.cases(resolution), methods, variants)
-    return [Task(sc.case, m) for sc, _, m in todo]
+    cases = module.cases(resolution)
+    todo, _ = plan(cases, methods, variants)
+    numerical = _numerical(module, methods)
+    ran: dict[str, list[str]] = {}
+    for sc, name, _ in todo:
+        if name in numerical:
+            ran.setdefault(sc.id, []).append(name)
+    reference = {sc.id: ref for sc in cases
+                 if (ref := reference_for(sc.case, ran.get(sc.id, []))) is not None}
+    return ([Task(sc.case, m) for sc, _, m in todo]
+            + [Task(sc.case, m) for sc, _, m in _refine_todo(cases, reference, resolution)])
+
+
+def _numerical(module, methods: Mapping[str, Any]) -> list[str]:
+    """The registered methods that may serve as a case's reference in ``module`` (not the
+    closed form it judges)."""
+    predicted = getattr(module, "PREDICTED", CLOSED)
+    return [n for n in methods if method_info(n).reference_rank > 0 and n != predicted]
 
 
 #: Suffix of the rows of a reference solved again at refined settings (convergence estimate).
 REFINED = "-refined"
 
 
-def _refine(cases: Sequence[Any], reference: Mapping[str, str], resolution: str, store: ResultStore,
-            opts: Mapping[str, Any]) -> tuple[dict[str, dict[str, dict]], int, int]:
-    """Solve the cases marked ``refine`` with their reference at its ``refined_settings``;
-    ``{case id: {"<method>-refined": result}}``, and how many were computed and reused."""
+def _refine_todo(cases: Sequence[Any], reference: Mapping[str, str], resolution: str) -> list:
+    """(study case, reference name, refined instance) of the cases marked ``refine`` whose
+    reference (``reference``: case id -> method name) has ``refined_settings``."""
     from coathertz.methods import method_class
-    from coathertz.runner import Task, run_tasks
 
     todo = []
     for sc in cases:
@@ -118,6 +134,16 @@ def _refine(cases: Sequence[Any], reference: Mapping[str, str], resolution: str,
         if settings is None:
             continue
         todo.append((sc, ref, get_method(ref, **settings)))
+    return todo
+
+
+def _refine(cases: Sequence[Any], reference: Mapping[str, str], resolution: str, store: ResultStore,
+            opts: Mapping[str, Any]) -> tuple[dict[str, dict[str, dict]], int, int]:
+    """Solve the cases marked ``refine`` with their reference at its ``refined_settings``;
+    ``{case id: {"<method>-refined": result}}``, and how many were computed and reused."""
+    from coathertz.runner import Task, run_tasks
+
+    todo = _refine_todo(cases, reference, resolution)
     if not todo:
         return {}, 0, 0
     with warnings.catch_warnings():
@@ -162,7 +188,7 @@ def run_study(module, resolution: str, methods: Mapping[str, Any], store: Result
     result.rows = make_rows(cases, records)
     predicted = getattr(module, "PREDICTED", CLOSED)
     quantities = getattr(module, "QUANTITIES", QUANTITIES)
-    numerical = [n for n in methods if method_info(n).reference_rank > 0 and n != predicted]
+    numerical = _numerical(module, methods)
     byid = {sc.id: sc for sc in cases}
     for cid, ms in records.items():
         ref = reference_for(byid[cid].case, [n for n in ms if n in numerical])

@@ -61,6 +61,9 @@ from coathertz.stress_summary import first_principal, von_mises
 
 NAME = "stresses"
 TITLE = "Stresses in coated bodies: first-yield load vs friction, cracking and interface-shear maps"
+#: ``verify`` runs this study early: its onset searches run in ``analyse`` (in this process),
+#: while the workers solve the next studies' cases.
+RUN_EARLY = True
 CLAIM = ("Extension (not in the paper): homogeneous onset 0.620 p0 at 0.481 a (Johnson: 1.60 Y at 0.48 a); "
          "onset vs mu against Hamilton (1983); maps of W_y/W_ys, first-yield location, coating tension "
          "and interface shear over E in [1/4, 4], H in [0.01, 3], Rx/Ry up to 10.")

@@ -320,12 +320,13 @@ def run_tasks(
                 outcome.reused += 1
             else:
                 pending.append(t)
-    adopted = _AHEAD.adopt(pending)
-    if adopted:
-        covered = {Task(c, m).key for m, cs, _ in adopted.values() for c in cs}
+    adopted, handed = _AHEAD.adopt(pending)
+    if adopted or handed:
+        covered = {Task(c, m).key for m, cs in [*((m, cs) for m, cs, _ in adopted.values()), *handed]
+                   for c in cs}
         pending = [t for t in pending if t.key not in covered]
     own = {t.key for t in unique.values()}
-    if not pending and not adopted:
+    if not pending and not adopted and not handed:
         # nothing to solve here (every result stored): the next call's cases start now, on the
         # workers, while this process analyses and draws
         _start_ahead(ahead, store, own, chunk_size, workers, scheduler)
@@ -335,7 +336,7 @@ def run_tasks(
     counts: dict[str, int] = {}
     for t in pending:
         counts[t.method.name] = counts.get(t.method.name, 0) + 1
-    for m, cs, _ in adopted.values():
+    for m, cs in [*((m, cs) for m, cs, _ in adopted.values()), *handed]:
         counts[m.name] = counts.get(m.name, 0) + len(cs)
     bar = Progress(counts, desc, enabled=progress)
     stored = 0
@@ -368,10 +369,11 @@ def run_tasks(
         if scheduler is None and workers <= 1:
             local, remote = local + remote, []
         local_chunks = _chunks(local, chunk_size)
-        if (remote or adopted) and scheduler is None:
+        if (remote or adopted or handed) and scheduler is None:
             # the workers start first; this process solves its own (inline) chunks meanwhile
             later = None if ahead is None else (lambda: _AHEAD.plan(ahead, store, own, chunk_size))
-            _run_processes(_chunks(remote, chunk_size), workers, record, adopted, later, local_chunks)
+            _run_processes(handed + _chunks(remote, chunk_size), workers, record, adopted, later,
+                           local_chunks)
         else:
             if not remote:  # nothing for the workers from this call: the next call's cases start now
                 _start_ahead(ahead, store, own, chunk_size, workers, scheduler)
@@ -450,68 +452,158 @@ def worker_init(parent: int) -> None:
 _POOL: tuple[ProcessPoolExecutor, int] | None = None
 
 
-#: Chunks started ahead per worker at most (a chunk is 8 FFT cases or one FE case, about a
-#: second): enough to cover a study's analysis and drawing, little to lose on an interrupt.
+#: Chunks of the next calls' work kept running ahead per worker (a chunk is 8 FFT cases or one
+#: FE case, about a second): enough to keep every worker busy between two results.
 AHEAD_PER_WORKER = 3
+#: Chunks started ahead per worker at most, finished ones that no call has adopted yet included:
+#: what the workers may solve while this process analyses and draws (half a minute of work and
+#: more); an interrupted run stores the finished ones (:meth:`_Ahead.salvage`).
+AHEAD_HELD_PER_WORKER = 32
+#: Seconds between two checks of the feeder thread when no chunk has finished.
+FEED_INTERVAL = 0.25
 
 
 class _Ahead:
-    """Work of the next :func:`run_tasks` call started early on the shared pool.
+    """Work of the next :func:`run_tasks` calls started early on the shared pool.
 
     ``queued`` chunks wait for a free slot; ``running`` maps a submitted chunk's future to its
-    (method, cases). :meth:`adopt` hands the next call the futures of its own tasks (it records
-    their results as if it had submitted them) and takes back its queued ones. What is never
-    adopted is dropped with the pool (only its results are lost: nothing was stored)."""
+    (method, cases), until a call adopts it. :meth:`adopt` hands a call the futures of its own
+    tasks (it records their results as if it had submitted them) and takes back its queued ones.
+
+    While a :class:`worker_pool` block is open, a feeder thread (:meth:`start`) submits queued
+    chunks as earlier ones finish, so that the workers go on solving while this process is busy
+    elsewhere (a study's analysis, its figures): at most :data:`AHEAD_PER_WORKER` chunks per
+    worker running, :data:`AHEAD_HELD_PER_WORKER` started and not yet adopted. It holds back
+    while a call submits its own chunks (``paused``), which come first. What is never adopted is
+    dropped with the pool; on an interrupt the finished chunks are stored first
+    (:meth:`salvage`)."""
 
     def __init__(self) -> None:
         self.queued: list[tuple[Method, list[ContactCase]]] = []
         self.running: dict[Future, tuple[Method, list[ContactCase]]] = {}
+        self.paused = False
+        self._lock = threading.RLock()
+        self._wake = threading.Event()
+        self._stop = threading.Event()
+        self._thread: threading.Thread | None = None
+        self._pool: tuple[ProcessPoolExecutor, int] | None = None
 
     def clear(self) -> None:
-        for f in self.running:
-            f.cancel()
-        self.queued.clear()
-        self.running.clear()
+        with self._lock:
+            for f in self.running:
+                f.cancel()
+            self.queued.clear()
+            self.running.clear()
 
-    def plan(self, ahead: Callable[[], Iterable[Task]], store: ResultStore, own: set,
+    def plan(self, ahead: Callable[[], Iterable[Any]], store: ResultStore, own: set,
              chunk_size: int | None) -> None:
         """Queue the tasks of ``ahead()`` that are neither this call's (``own``), nor stored, nor
-        already ahead, nor run in this process (``inline`` methods)."""
-        taken = own | {Task(c, m).key for m, cs in [*self.queued, *self.running.values()] for c in cs}
-        todo: dict[tuple, Task] = {}
-        for t in ahead():
-            if t.key not in taken and not getattr(t.method, "inline", False):
-                todo.setdefault(t.key, t)
-        by_method: dict[int, list[Task]] = {}
-        for t in todo.values():
-            by_method.setdefault(id(t.method), []).append(t)
-        for ts in by_method.values():
-            m = ts[0].method
-            found = store.get_many([t.case for t in ts], m.name, m.settings())
-            self.queued += _chunks([t for t in ts if t.key[0] not in found], chunk_size)
+        already ahead, nor run in this process (``inline`` methods). ``ahead()`` gives tasks, or
+        groups of tasks (one per later call), each chunked on its own, in order."""
+        with self._lock:
+            held = [*self.queued, *self.running.values()]
+        taken = set(own) | {Task(c, m).key for m, cs in held for c in cs}
+        items = list(ahead())
+        groups = [items] if not items or isinstance(items[0], Task) else items
+        chunks = []
+        for group in groups:  # chunked group by group (a study's cases with each other)
+            todo: dict[tuple, Task] = {}
+            for t in group:
+                if t.key not in taken and not getattr(t.method, "inline", False):
+                    todo.setdefault(t.key, t)
+            taken |= set(todo)
+            by_method: dict[int, list[Task]] = {}
+            for t in todo.values():
+                by_method.setdefault(id(t.method), []).append(t)
+            for ts in by_method.values():
+                m = ts[0].method
+                found = store.get_many([t.case for t in ts], m.name, m.settings())
+                chunks += _chunks([t for t in ts if t.key[0] not in found], chunk_size)
+        with self._lock:
+            self.queued += chunks
+        self._wake.set()
 
     def top_up(self, ex: ProcessPoolExecutor, workers: int) -> None:
-        """Submit queued chunks while fewer than ``AHEAD_PER_WORKER * workers`` run."""
-        while self.queued and len(self.running) < AHEAD_PER_WORKER * workers:
-            m, cs = self.queued.pop(0)
-            self.running[ex.submit(solve_chunk, m, cs)] = (m, cs)
+        """Submit queued chunks while fewer than ``AHEAD_PER_WORKER * workers`` run and fewer
+        than ``AHEAD_HELD_PER_WORKER * workers`` are held (running or finished, not adopted)."""
+        with self._lock:
+            busy = sum(not f.done() for f in self.running)
+            while (self.queued and busy < AHEAD_PER_WORKER * workers
+                   and len(self.running) < AHEAD_HELD_PER_WORKER * workers):
+                m, cs = self.queued.pop(0)
+                f = ex.submit(solve_chunk, m, cs)
+                self.running[f] = (m, cs)
+                busy += 1
+                f.add_done_callback(lambda _f: self._wake.set())
 
-    def adopt(self, pending: Sequence[Task]) -> dict[Future, tuple[Method, list[ContactCase], float]]:
-        """The running chunks that hold any of ``pending`` (removed from here, with their submit
-        time for :func:`run_tasks`'s records); queued chunks holding any are dropped (the caller
-        submits those tasks itself)."""
-        if not (self.queued or self.running):
-            return {}
-        want = {t.key for t in pending}
+    def adopt(self, pending: Sequence[Task]) -> tuple[dict[Future, tuple[Method, list[ContactCase], float]],
+                                                      list[tuple[Method, list[ContactCase]]]]:
+        """The chunks that hold any of ``pending``, taken from here: the running ones (with
+        their submit time for :func:`run_tasks`'s records) and the queued ones, which the caller
+        submits as they are (so that a case is solved with the same chunk, hence the same warm
+        starts, whatever the timing: the numbers of a run do not depend on how fast it went)."""
+        with self._lock:
+            if not (self.queued or self.running):
+                return {}, []
+            want = {t.key for t in pending}
 
-        def mine(cs: list[ContactCase], m: Method) -> bool:
-            return any(Task(c, m).key in want for c in cs)
+            def mine(cs: list[ContactCase], m: Method) -> bool:
+                return any(Task(c, m).key in want for c in cs)
 
-        self.queued = [(m, cs) for m, cs in self.queued if not mine(cs, m)]
-        got = {f: (m, cs, time.perf_counter()) for f, (m, cs) in self.running.items() if mine(cs, m)}
-        for f in got:
-            del self.running[f]
-        return got
+            queued = [(m, cs) for m, cs in self.queued if mine(cs, m)]
+            self.queued = [(m, cs) for m, cs in self.queued if not mine(cs, m)]
+            got = {f: (m, cs, time.perf_counter()) for f, (m, cs) in self.running.items() if mine(cs, m)}
+            for f in got:
+                del self.running[f]
+        self._wake.set()  # slots freed
+        return got, queued
+
+    def salvage(self, store: ResultStore) -> int:
+        """Store the results of the chunks started ahead that have finished and that no call
+        adopted (an interrupted run keeps them); returns the number of results stored."""
+        with self._lock:
+            done = [(f, m, cs) for f, (m, cs) in self.running.items()
+                    if f.done() and not f.cancelled() and f.exception() is None]
+        n = 0
+        for f, m, cs in done:
+            for c, (scalars, err) in zip(cs, f.result(), strict=True):
+                store.put(c, m.name, m.settings(), scalars, err)
+                n += 1
+        return n
+
+    def wake(self) -> None:
+        """Let the feeder thread look for free slots now."""
+        self._wake.set()
+
+    def start(self, ex: ProcessPoolExecutor, workers: int) -> None:
+        """Start the feeder thread for the pool ``ex`` (a :class:`worker_pool` block)."""
+        self.stop()
+        self._pool = (ex, workers)
+        self._stop.clear()
+        self._thread = threading.Thread(target=self._feed, daemon=True, name="ahead-feeder")
+        self._thread.start()
+
+    def stop(self) -> None:
+        """Stop the feeder thread (it submits nothing more)."""
+        if self._thread is not None:
+            self._stop.set()
+            self._wake.set()
+            self._thread.join(timeout=5.0)
+        self._thread, self._pool = None, None
+
+    def _feed(self) -> None:
+        while not self._stop.is_set():
+            self._wake.wait(FEED_INTERVAL)
+            self._wake.clear()
+            if self._stop.is_set() or self.paused or self._pool is None:
+                continue
+            ex, n = self._pool
+            if getattr(ex, "_broken", False):
+                return
+            try:
+                self.top_up(ex, n)
+            except RuntimeError:  # the pool shut down under us (an interrupted run)
+                return
 
 
 _AHEAD = _Ahead()
@@ -556,12 +648,15 @@ class worker_pool:  # a context manager, named like the function it reads as
     """One pool of ``workers`` local processes for every :func:`run_tasks` call in the block
     (``with worker_pool(2): ...`` around the studies of a run): the workers are started once,
     not per call, and keep what they cached (quadrature tables, FFT plans) from one call to the
-    next. Calls asking for a different number of workers get their own pool. Leaving the block
-    by an exception terminates the workers; leaving it normally waits for them to exit.
+    next, and the next calls' work started ahead (``run_tasks(..., ahead=...)``) is fed to them
+    while this process does other things. Calls asking for a different number of workers get
+    their own pool. Leaving the block by an exception terminates the workers, after storing in
+    ``store`` (where given) what they finished ahead; leaving it normally waits for them to exit.
     """
 
-    def __init__(self, workers: int):
+    def __init__(self, workers: int, store: ResultStore | None = None):
         self.workers = max(1, min(int(workers), os.cpu_count() or 1))
+        self.store = store
         self._outer: tuple[ProcessPoolExecutor, int] | None = None
         self._ex: ProcessPoolExecutor | None = None
 
@@ -569,18 +664,28 @@ class worker_pool:  # a context manager, named like the function it reads as
         global _POOL
         self._outer, self._ex = _POOL, _new_pool(self.workers)
         _POOL = (self._ex, self.workers)
+        _AHEAD.start(self._ex, self.workers)
         return self
 
     def __exit__(self, kind, exc, tb) -> None:
         global _POOL
+        _AHEAD.stop()
         _POOL = self._outer
-        _AHEAD.clear()  # work started for a call that did not come
         if self._ex is None:  # pragma: no cover - __enter__ failed
+            _AHEAD.clear()
             return
+        if kind is not None and self.store is not None:
+            try:  # the cases finished ahead are kept: a rerun does not solve them again
+                _AHEAD.salvage(self.store)
+            except Exception:  # a store that cannot take them: they are solved again
+                pass
+        _AHEAD.clear()  # work started for a call that did not come
         if kind is None:
             self._ex.shutdown(wait=True)
         else:
             _kill_pool(self._ex)
+        if self._outer is not None:  # an enclosing block's feeder goes on
+            _AHEAD.start(*self._outer)
 
 
 def _start_ahead(ahead: Callable[[], Iterable[Task]] | None, store: ResultStore, own: set,
@@ -619,6 +724,7 @@ def _run_processes(chunks: list, workers: int, record: Callable,
     clean = False
     ahead = shared and later is not None
     started_ahead = False
+    _AHEAD.paused = shared  # this call's own chunks first
     try:
         # keep at most 2 * workers chunks submitted: an interrupt then loses little work
         for m, cs in it:
@@ -638,7 +744,10 @@ def _run_processes(chunks: list, workers: int, record: Callable,
             nxt = next(it, None)
             if nxt is not None:
                 futures[ex.submit(solve_chunk, *nxt)] = (nxt[0], nxt[1], time.perf_counter())
-            elif ahead:  # this call's chunks are all out: the next call's fill the free slots
+            elif shared and _AHEAD.paused:  # this call's chunks are all out: the feeder goes on
+                _AHEAD.paused = False
+                _AHEAD.wake()
+            if nxt is None and ahead:  # the next call's chunks fill the free slots
                 if not started_ahead:
                     started_ahead = True
                     try:
@@ -658,6 +767,7 @@ def _run_processes(chunks: list, workers: int, record: Callable,
                 collect(f)
         clean = True
     finally:
+        _AHEAD.paused = False
         for f in futures:
             f.cancel()
         if not clean:  # interrupted: do not wait for chunks in flight (an FE case can take minutes)

@@ -118,6 +118,56 @@ def test_next_call_runs_ahead_and_is_adopted_once(tmp_path):
         assert out2.get(t.case, "fake").result["delta"] == serial.get(t.case, "fake").result["delta"]
 
 
+def _wait_for(pred, timeout: float = 20.0) -> bool:
+    end = time.monotonic() + timeout
+    while time.monotonic() < end:
+        if pred():
+            return True
+        time.sleep(0.02)
+    return pred()
+
+
+def test_workers_go_on_with_work_ahead_while_this_process_is_busy(tmp_path):
+    """The feeder thread keeps handing the next calls' chunks to the workers while this process
+    does something else (here: sleeps): far more chunks than the workers hold at once
+    (``AHEAD_PER_WORKER`` per worker) are solved before the next call comes, and that call adopts
+    every one of them (each case solved once)."""
+    ahead = run_tasks.__globals__["_AHEAD"]
+    per_worker = run_tasks.__globals__["AHEAD_PER_WORKER"]
+    log = tmp_path / "log"
+    m = FakeMethod(delay=0.01, log=str(log))
+    cs = cases(30)
+    first, later = [Task(c, m) for c in cs[:2]], [Task(c, m) for c in cs[2:]]
+    assert len(later) > 2 * per_worker * 2
+    with ResultStore(tmp_path / "s.sqlite", version="t") as st, worker_pool(2):
+        run_tasks(first, st, workers=2, progress=False, chunk_size=1, ahead=lambda: later)
+        # this process is busy elsewhere; no call of run_tasks tops the pool up
+        assert _wait_for(lambda: not ahead.queued and all(f.done() for f in ahead.running)), \
+            f"{len(ahead.queued)} chunks still queued, {len(ahead.running)} started"
+        out = run_tasks(later, st, workers=2, progress=False, chunk_size=1)
+        assert (out.computed, out.reused) == (28, 0) and not ahead.running
+    assert sorted(line.split()[0] for line in _log(log)) == sorted(c.label for c in cs)
+
+
+def test_interrupted_run_keeps_the_cases_finished_ahead(tmp_path):
+    """Leaving a ``worker_pool(workers, store)`` block by an interrupt stores the chunks the
+    workers finished ahead (no call adopted them yet): a rerun solves only the rest."""
+    ahead = run_tasks.__globals__["_AHEAD"]
+    log = tmp_path / "log"
+    m = FakeMethod(delay=0.01, log=str(log))
+    cs = cases(12)
+    first, later = [Task(c, m) for c in cs[:2]], [Task(c, m) for c in cs[2:]]
+    with ResultStore(tmp_path / "s.sqlite", version="t") as st:
+        with pytest.raises(KeyboardInterrupt), worker_pool(2, st):
+            run_tasks(first, st, workers=2, progress=False, chunk_size=1, ahead=lambda: later)
+            assert _wait_for(lambda: not ahead.queued and all(f.done() for f in ahead.running))
+            raise KeyboardInterrupt
+        assert st.count() == 12 and not ahead.running
+        again = run_tasks(first + later, st, workers=1, progress=False)
+        assert (again.computed, again.reused) == (0, 12)
+    assert len(_log(log)) == 12
+
+
 def test_call_with_nothing_to_solve_starts_the_next_calls_cases(tmp_path):
     """A call whose results are all stored (a study re-using another's cases) gives the workers
     nothing: the next call's cases start on them at once, and the next call adopts them."""

@@ -15,6 +15,10 @@ HELP = "run the paper's studies (closed form, FFT, FE) and write the verificatio
 #: What to lower when the command runs out of memory (named in the error).
 MEMORY_HINT = "a lower resolution (--tiny, --quick)"
 
+#: Studies ahead of the one running whose cases the workers may start (while this process
+#: analyses and draws the running one's): enough to keep 2 workers busy through the longest
+#: analysis of the quick run (about 6 s).
+AHEAD_STUDIES = 4
 #: dask.distributed protocols a scheduler of another process can be reached by.
 SCHEDULER_PROTOCOLS = ("tcp", "tls", "ws", "wss", "ucx")
 
@@ -162,16 +166,24 @@ def run(args: argparse.Namespace) -> int:
         # each study's figures are drawn as soon as it is done and rendered in the background
         # while the next study runs (the block ends when every render has finished)
         # one pool of worker processes for all the studies (started once, caches kept)
-        pool = worker_pool(args.workers) if args.scheduler is None else contextlib.nullcontext()
+        pool = worker_pool(args.workers, store) if args.scheduler is None else contextlib.nullcontext()
         with pool, saving(("png", "svg") if args.svg else ("png",), 1 if args.scheduler else args.workers):
             # studies whose analysis solves in processes of its own (``RUN_EARLY``) first, so that
             # the next studies' cases fill the workers it leaves idle; the report keeps the order
             order = sorted(mods, key=lambda m: not getattr(m, "RUN_EARLY", False))
+            planned = 1  # the studies of ``order`` whose cases were handed to the runner ahead
+
+            def ahead(i: int) -> list:
+                # the cases of the next AHEAD_STUDIES studies not handed over yet: the workers
+                # solve them while this process analyses and draws (each study planned once)
+                nonlocal planned
+                todo = order[max(planned, i + 1):i + 1 + AHEAD_STUDIES]
+                planned = max(planned, i + 1 + AHEAD_STUDIES)
+                return [study_tasks(m, args.resolution, methods) for m in todo]
+
             for i, mod in enumerate(order):
-                # the next study's cases start on the workers as this one's run out
-                nxt = order[i + 1] if i + 1 < len(order) and args.scheduler is None else None
-                r = run_study(mod, args.resolution, methods, store, {**opts, "ahead": _once(
-                    lambda m=nxt: study_tasks(m, args.resolution, methods) if m is not None else [])})
+                nxt = None if args.scheduler is not None else _once(lambda i=i: ahead(i))
+                r = run_study(mod, args.resolution, methods, store, {**opts, "ahead": nxt})
                 results.append(r)
                 n = len({x['case'] for x in r.rows})
                 print(study_line(r.name, n, r.computed, r.reused, r.wall_time) + "  claims: "
