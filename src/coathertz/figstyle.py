@@ -16,15 +16,15 @@ import os
 import re
 import signal
 import sys
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-__all__ = ["DEFAULT_FORMATS", "active_formats", "after_renders", "colour", "figure", "method_handles",
-           "method_style", "save", "saving", "series"]
+__all__ = ["DEFAULT_FORMATS", "active_formats", "after_renders", "colour", "draw_elsewhere", "figure",
+           "method_handles", "method_style", "save", "saving", "series"]
 
 
 #: The formats :func:`save` writes unless a :func:`~coathertz.figstyle.saving` block says
@@ -45,19 +45,32 @@ class _Saving:
     running: dict[int, str] = field(default_factory=dict)  # pid -> figure name
     failed: list[str] = field(default_factory=list)
     after: list = field(default_factory=list)  # callables to run once every render succeeded
+    # pid -> (read end of the pipe the process writes its files' paths to, the list to fill)
+    written: dict[int, tuple[int, list[Path]]] = field(default_factory=dict)
 
     def reap(self, block: bool) -> None:
         """Collect this block's finished render processes; with ``block``, wait for the oldest.
         (Only its own children are waited for: a worker pool of the caller is left alone.)"""
         for pid in list(self.running):
+            if block and pid in self.written:  # its paths first: it cannot end while the pipe is full
+                self._read_paths(pid)
             done, status = os.waitpid(pid, 0 if block else os.WNOHANG)
             if done == 0:
                 continue
             name = self.running.pop(pid)
+            if pid in self.written:
+                self._read_paths(pid)
             if os.waitstatus_to_exitcode(status) != 0:
                 self.failed.append(name)
             if block:
                 return
+
+    def _read_paths(self, pid: int) -> None:
+        """Read to its end the pipe of a :func:`draw_elsewhere` process (one path a line) into
+        its list, and close it."""
+        fd, paths = self.written.pop(pid)
+        with os.fdopen(fd, "rb") as fh:
+            paths.extend(Path(line) for line in fh.read().decode().splitlines() if line)
 
     def stop(self) -> None:
         """Kill and collect every render process still running (the block is being left early)."""
@@ -67,7 +80,34 @@ class _Saving:
         for pid in list(self.running):
             with contextlib.suppress(ChildProcessError):
                 os.waitpid(pid, 0)
+        for fd, _ in self.written.values():
+            os.close(fd)
+        self.written.clear()
         self.running.clear()
+
+    def fork(self, name: str, work: Callable[[], None]) -> int | None:
+        """Fork a render process named ``name`` that runs ``work()`` and leaves without any
+        cleanup (exit status 1, with one line naming ``name`` and the error, if it raised);
+        first wait while ``jobs + QUEUED_RENDERS`` are running. Returns the child's pid in this
+        process; never returns in the child."""
+        while len(self.running) >= self.jobs + QUEUED_RENDERS:
+            self.reap(block=True)
+        sys.stdout.flush()
+        sys.stderr.flush()
+        pid = os.fork()
+        if pid == 0:
+            code = 1
+            try:
+                gc.disable()  # short-lived: a collection would only copy the parent's pages (fork)
+                signal.signal(signal.SIGINT, signal.SIG_DFL)
+                work()
+                code = 0
+            except BaseException as exc:  # one line, the parent names the figure again and raises
+                print(f"coathertz: figure {name}: {type(exc).__name__}: {exc}", file=sys.stderr, flush=True)
+            finally:
+                os._exit(code)
+        self.running[pid] = name
+        return pid
 
 
 _SAVING: _Saving | None = None
@@ -333,24 +373,41 @@ def save(fig, outdir: str | Path, name: str) -> list[Path]:
         _write(fig, paths)
         plt.close(fig)
         return paths
-    while len(state.running) >= state.jobs + QUEUED_RENDERS:
-        state.reap(block=True)
-    sys.stdout.flush()
-    sys.stderr.flush()
-    pid = os.fork()
-    if pid == 0:  # the render process: write the files and leave without running any cleanup
-        code = 1
-        try:
-            gc.disable()  # short-lived: a collection would only copy the parent's pages (fork)
-            signal.signal(signal.SIGINT, signal.SIG_DFL)
-            _write(fig, paths)
-            code = 0
-        except BaseException as exc:  # one line, the parent names the figure again and raises
-            print(f"coathertz: figure {name}: {type(exc).__name__}: {exc}", file=sys.stderr, flush=True)
-        finally:
-            os._exit(code)
-    state.running[pid] = name
+    state.fork(name, lambda: _write(fig, paths))
     plt.close(fig)
+    state.reap(block=False)
+    return paths
+
+
+def draw_elsewhere(name: str, draw: Callable[[], Iterable[Path]]) -> list[Path]:
+    """Run ``draw()``, which builds figures, saves them (:func:`save`) and returns their paths, in
+    a forked render process of the enclosing :func:`~coathertz.figstyle.saving` block (one with
+    more than one job): this process goes on at once, and building the figures costs it nothing.
+    Inside the render process each figure is written as it is saved (the process's text, font
+    and tick caches serve all of them).
+
+    Returns the list of ``draw()``'s paths: at once outside such a block; within one, a list
+    filled when the render process ends (complete at the end of the block, like the files).
+    ``draw`` must not change anything this process reads later: it runs in a copy of it."""
+    state = _SAVING
+    if state is None or state.jobs == 1:
+        return list(draw())
+    paths: list[Path] = []
+    read, write = os.pipe()
+
+    def work() -> None:
+        global _SAVING
+        os.close(read)
+        _SAVING = _Saving(state.formats, 1)  # in this process, each figure written as saved
+        drawn = [str(p) for p in draw()]
+        for fn in _SAVING.after:
+            fn()
+        with os.fdopen(write, "wb") as fh:
+            fh.write("".join(p + "\n" for p in drawn).encode())
+
+    pid = state.fork(name, work)
+    os.close(write)
+    state.written[pid] = (read, paths)
     state.reap(block=False)
     return paths
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import os
 import time
+from pathlib import Path
 
 import pytest
 
@@ -116,12 +117,16 @@ class _Result:
 
 class _Study:
     GENERIC_FIGURES = False
-    calls = 0
 
     @classmethod
     def plot(cls, result, outdir):
-        cls.calls += 1
+        with (Path(outdir) / "calls.txt").open("a") as fh:  # drawn in a render process: counted on disk
+            fh.write("drawn\n")
         return save(_draw(f"value {result.value}"), outdir, "toy")
+
+
+def _calls(folder) -> int:
+    return len((folder / "calls.txt").read_text().splitlines())
 
 
 def test_unchanged_figures_are_not_redrawn(tmp_path):
@@ -130,11 +135,30 @@ def test_unchanged_figures_are_not_redrawn(tmp_path):
     for value, drawn in ((1.0, 1), (1.0, 1), (2.0, 2)):  # same numbers: kept; new numbers: redrawn
         with saving(jobs=2):
             paths = plot_study(_Result(value), _Study, tmp_path)
-        assert _Study.calls == drawn and paths[0].stat().st_size > 5000
+        assert _calls(tmp_path) == drawn and paths[0].stat().st_size > 5000
     paths[0].unlink()  # a figure gone from disk is drawn again
     with saving(jobs=2):
         plot_study(_Result(2.0), _Study, tmp_path)
-    assert _Study.calls == 3 and paths[0].is_file()
+    assert _calls(tmp_path) == 3 and paths[0].is_file()
+
+
+def test_study_figures_are_built_in_the_render_process(tmp_path):
+    """Within a saving block the study's figures are built and written by a render process: this
+    process runs none of ``plot``, and learns the written paths when the block ends."""
+    from coathertz.report import plot_study
+
+    class Where(_Study):
+        @classmethod
+        def plot(cls, result, outdir):
+            (Path(outdir) / "pid.txt").write_text(str(os.getpid()))
+            return [*save(_draw("a"), outdir, "toy_a"), *save(_draw("b"), outdir, "toy_b")]
+
+    with saving(jobs=2):
+        paths = plot_study(_Result(3.0), Where, tmp_path)
+        assert paths == [] or len(paths) == 2  # filled when its process ends
+    assert [p.name for p in paths] == ["toy_a.png", "toy_b.png"]
+    assert all(p.stat().st_size > 5000 for p in paths)
+    assert int((tmp_path / "pid.txt").read_text()) != os.getpid()
 
 
 def test_failed_render_leaves_no_record(tmp_path, capfd):
