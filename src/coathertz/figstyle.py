@@ -100,6 +100,7 @@ class _Saving:
             try:
                 gc.disable()  # short-lived: a collection would only copy the parent's pages (fork)
                 signal.signal(signal.SIGINT, signal.SIG_DFL)
+                _render_process_caches()
                 work()
                 code = 0
             except BaseException as exc:  # one line, the parent names the figure again and raises
@@ -341,6 +342,89 @@ def _prepare(fig) -> None:
     _log_ticks_in_view(fig)
 
 
+def _render_process_caches() -> None:
+    """In a render process (a process of ours alone, which only draws figures and exits), let
+    matplotlib keep what it measures of text and markers for every figure instead of measuring
+    it again; the pixels are the same (``tests/verification/test_figure_saving.py``).
+
+    1. The height metrics of a font (the ascent, descent and line gap every text line is laid
+       out with: a font look-up and two font tables read for every text drawn or measured) are
+       kept per font properties and resolution: the Agg renderer gets the method
+       ``_get_font_height_metrics`` matplotlib's text layout asks a renderer for first
+       (``matplotlib.text.Text._get_layout``), computing what the layout computes without it.
+    2. The width, height and descent of a string (matplotlib keeps them per renderer, and each
+       figure has a renderer of its own) are kept for the process, per string, font properties,
+       math flag and resolution: the Agg renderer's measure depends on nothing else.
+    3. Mathtext is parsed once per string, resolution and font for the process (matplotlib
+       keeps the parses per renderer).
+    4. A marker copied from another (every new tick copies the first tick's lines) is copied
+       with its transforms, not deep-copied with its paths (which no marker changes)."""
+    import matplotlib.text
+    from matplotlib.backends.backend_agg import RendererAgg
+    from matplotlib.font_manager import fontManager, get_font
+    from matplotlib.markers import MarkerStyle
+    from matplotlib.mathtext import MathTextParser
+
+    if getattr(RendererAgg, "_coathertz_caches", False):
+        return
+    heights: dict = {}
+
+    def _get_font_height_metrics(self, prop):
+        key = (hash(prop), self.dpi)  # FontProperties compare by this hash
+        if key not in heights:
+            out = (None, None, None)
+            font = get_font(fontManager._find_fonts_by_props(prop))
+            for table_name, linegap_key, ascent_key, descent_key in (
+                    ("OS/2", "sTypoLineGap", "sTypoAscender", "sTypoDescender"),
+                    ("hhea", "lineGap", "ascent", "descent")):
+                table = font.get_sfnt_table(table_name)
+                if table is None:
+                    continue
+                fontsize = prop.get_size_in_points()
+                units_per_em = font.get_sfnt_table("head")["unitsPerEm"]
+                scale = 1 / units_per_em * fontsize * self.dpi / 72  # as matplotlib's layout
+                out = (table[ascent_key] * scale, -table[descent_key] * scale, table[linegap_key] * scale)
+                break
+            heights[key] = out
+        return heights[key]
+
+    metrics: dict = {}
+    measured = matplotlib.text._get_text_metrics_with_cache
+
+    def text_metrics(renderer, text, fontprop, ismath, dpi):
+        if type(renderer) is not RendererAgg:
+            return measured(renderer, text, fontprop, ismath, dpi)
+        key = (text, hash(fontprop), ismath, dpi, renderer.dpi)
+        if key not in metrics:
+            metrics[key] = renderer.get_text_width_height_descent(text, fontprop, ismath)
+        return metrics[key]
+
+    parser = MathTextParser("path")  # what each renderer makes for itself
+    init = RendererAgg.__init__
+
+    def __init__(self, *args, **kwargs):
+        init(self, *args, **kwargs)
+        self.mathtext_parser = parser  # its parses kept per string, resolution and font
+
+    set_marker = MarkerStyle._set_marker
+
+    def _set_marker(self, marker):
+        if not isinstance(marker, MarkerStyle):
+            return set_marker(self, marker)
+        state = dict(marker.__dict__)
+        for k in ("_transform", "_alt_transform", "_user_transform"):
+            if state.get(k) is not None:
+                state[k] = state[k].frozen()  # a copy of its own (``rotated`` changes it in place)
+        self.__dict__ = state
+        return None
+
+    RendererAgg._get_font_height_metrics = _get_font_height_metrics
+    RendererAgg.__init__ = __init__
+    matplotlib.text._get_text_metrics_with_cache = text_metrics
+    MarkerStyle._set_marker = _set_marker
+    RendererAgg._coathertz_caches = True
+
+
 def _write_png_drawn(fig, path: Path) -> None:
     """Write the PNG of a figure with a layout engine from one drawing pass.
 
@@ -379,6 +463,34 @@ def save(fig, outdir: str | Path, name: str) -> list[Path]:
     return paths
 
 
+@functools.cache
+def _warm_up() -> None:
+    """Draw, once in this process, a small figure with what the report's figures have (a tight
+    layout, mathtext, log and linear ticks, a legend, a colour bar, text of several sizes), so
+    that every render process forked afterwards starts with matplotlib's one-time work done (the
+    mathtext grammar, the fonts loaded, the tick machinery): about 0.3 CPU-s each, once here."""
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(4.0, 3.0), dpi=PNG_DPI)
+    FigureCanvasAgg(fig)
+    ax, ax2 = fig.subplots(1, 2)
+    ax.plot([1e-2, 1.0, 10.0], [1.0, 2.0, 3.0], "o", mfc="none", ms=4, label=r"$\delta_{0s}^*$")
+    ax.set_xscale("log")
+    ax.set_xlabel(r"$H = h/a_{0s}$")
+    ax.set_ylabel("p [MPa]", fontsize=7)
+    ax.legend(fontsize=7)
+    fig.colorbar(ax2.pcolormesh([[0.0, 1.0], [2.0, 3.0]]), ax=ax2, label="error [%]")
+    ax2.set_title("x", fontsize=9)
+    fig.suptitle("warm-up", fontsize=10)
+    fig.set_layout_engine("tight")
+    _prepare(fig)
+    fig.canvas.draw()
+
+
 def draw_elsewhere(name: str, draw: Callable[[], Iterable[Path]]) -> list[Path]:
     """Run ``draw()``, which builds figures, saves them (:func:`save`) and returns their paths, in
     a forked render process of the enclosing :func:`~coathertz.figstyle.saving` block (one with
@@ -392,6 +504,7 @@ def draw_elsewhere(name: str, draw: Callable[[], Iterable[Path]]) -> list[Path]:
     state = _SAVING
     if state is None or state.jobs == 1:
         return list(draw())
+    _warm_up()
     paths: list[Path] = []
     read, write = os.pipe()
 

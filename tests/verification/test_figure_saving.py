@@ -263,3 +263,41 @@ def test_log_axes_make_only_the_ticks_in_view(tmp_path):
     assert drawn[1] == [(loc, plain_power(s)) for loc, s in drawn[0]]
     # 0.1 and 1; 0.02-0.09, 0.2-0.9, 2 and 3
     assert len(drawn[0]) == 20 and made[0] > 20 and made[1] == 20, (drawn, made)
+
+
+def _rich(label: str):
+    """A figure with what the render process's caches keep: text of several sizes and fonts,
+    mathtext, log ticks, markers (plain, open, rotated), a colour bar, a legend."""
+    from matplotlib.markers import MarkerStyle
+
+    fig, axes = figure(2)
+    ax0, ax1 = axes[0]
+    x = [1e-2, 1e-1, 1.0, 10.0]
+    ax0.plot(x, [1.0, 2.0, 4.0, 3.0], "o", mfc="none", ms=7, label=r"$\delta/\delta_{0s}$")
+    ax0.plot(x, [2.0, 1.0, 3.0, 5.0], marker=MarkerStyle("^").rotated(deg=30), ls="none", label="rotated")
+    ax0.set_xscale("log")
+    ax0.set_xlabel(r"$H = h/a_{0s}$")
+    ax0.set_ylabel("p [MPa]", fontsize=7)
+    ax0.legend(fontsize=7, title=label, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    im = ax1.pcolormesh([[0.0, 1.0], [2.0, 3.0]])
+    fig.colorbar(im, ax=ax1, label="error [%]")
+    ax1.set_title(label, fontsize=9, fontweight="bold")
+    fig.suptitle(f"{label}: a title that wraps " * 4, fontsize=10)
+    fig.set_layout_engine("tight")
+    return fig
+
+
+def test_render_process_caches_keep_the_pixels(tmp_path):
+    """Figures built and written in one render process (whose text and marker caches serve all
+    of them, :func:`~coathertz.figstyle._render_process_caches`) are byte-for-byte those written
+    here without the caches."""
+    from coathertz.figstyle import draw_elsewhere
+
+    labels = ["first", "second", "first"]  # the third repeats the first's strings: cache hits
+    serial = [save(_rich(s), tmp_path / "one", f"f{i}")[0] for i, s in enumerate(labels)]
+    with saving(jobs=2):
+        forked = draw_elsewhere("rich", lambda: [save(_rich(s), tmp_path / "two", f"f{i}")[0]
+                                                 for i, s in enumerate(labels)])
+    assert [p.name for p in forked] == [p.name for p in serial]
+    for a, b in zip(serial, forked, strict=True):
+        assert a.read_bytes() == b.read_bytes(), b
