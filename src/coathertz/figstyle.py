@@ -425,20 +425,32 @@ def _render_process_caches() -> None:
     RendererAgg._coathertz_caches = True
 
 
+#: zlib level of the PNG files: 3 writes the report's opaque RGB figures in about 60 % of the
+#: time of matplotlib's 6 (RGBA), the files about 5 % smaller (no alpha channel).
+PNG_COMPRESSION = 3
+
+
 def _write_png_drawn(fig, path: Path) -> None:
     """Write the PNG of a figure with a layout engine from one drawing pass.
 
     ``savefig`` draws such a figure twice: once with the renderer switched off, to run the
     layout engine, then again to paint. Drawing the canvas runs the engine itself at the start
-    of the pass, so one pass gives the same pixels: the written files are byte-for-byte those
-    of ``savefig(path, dpi=PNG_DPI)`` (checked on all 29 figures of the quick report, matplotlib
-    3.11; ``tests/verification/test_figure_saving.py``), at about three quarters of the
-    CPU time."""
-    import matplotlib.image
+    of the pass, so one pass gives the same pixels as ``savefig(path, dpi=PNG_DPI)``
+    (``tests/verification/test_figure_saving.py``), at about three quarters of the CPU time. An
+    opaque figure (every report figure) is written as RGB, without the alpha channel, at zlib
+    level :data:`PNG_COMPRESSION`; the PNG keeps matplotlib's resolution and software tags."""
+    import matplotlib
+    from PIL import Image
+    from PIL.PngImagePlugin import PngInfo
 
     fig.set_dpi(PNG_DPI)
     fig.canvas.draw()
-    matplotlib.image.imsave(path, fig.canvas.buffer_rgba(), format="png", origin="upper", dpi=PNG_DPI)
+    rgba = np.asarray(fig.canvas.buffer_rgba())
+    opaque = bool((rgba[..., 3] == 255).all())
+    image = Image.fromarray(np.ascontiguousarray(rgba[..., :3]) if opaque else rgba)  # RGB, RGBA
+    info = PngInfo()
+    info.add_text("Software", f"Matplotlib version{matplotlib.__version__}, https://matplotlib.org/")
+    image.save(path, format="png", dpi=(PNG_DPI, PNG_DPI), pnginfo=info, compress_level=PNG_COMPRESSION)
 
 
 def save(fig, outdir: str | Path, name: str) -> list[Path]:

@@ -62,7 +62,10 @@ def test_forked_renders_equal_serial_ones(tmp_path, forks):
 @pytest.mark.parametrize("engine", ["tight", "constrained"])
 def test_one_pass_png_equals_savefig(tmp_path, engine):
     """A figure with a layout engine is written from one drawing pass (``_write_png_drawn``):
-    the same bytes as matplotlib's ``savefig`` at the same resolution, which draws it twice."""
+    the same pixels as matplotlib's ``savefig`` at the same resolution, which draws it twice."""
+    import numpy as np
+    from PIL import Image
+
     from coathertz.figstyle import PNG_DPI
 
     def draw():
@@ -77,7 +80,12 @@ def test_one_pass_png_equals_savefig(tmp_path, engine):
     ref = draw()
     ref._suptitle.set_wrap(True)
     ref.savefig(tmp_path / "ref.png", dpi=PNG_DPI)
-    assert ours.read_bytes() == (tmp_path / "ref.png").read_bytes()
+    with Image.open(ours) as a, Image.open(tmp_path / "ref.png") as b:
+        assert a.mode == "RGB" and b.mode == "RGBA"  # opaque: written without the alpha channel
+        assert a.info["dpi"] == pytest.approx(b.info["dpi"]) and a.info["Software"] == b.info["Software"]
+        theirs = np.asarray(b)
+        assert (theirs[..., 3] == 255).all()
+        assert np.array_equal(np.asarray(a), theirs[..., :3])  # the same pixels
 
 
 def test_svg_only_on_request(tmp_path):
