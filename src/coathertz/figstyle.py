@@ -537,16 +537,18 @@ def draw_elsewhere(name: str, draw: Callable[[], Iterable[Path]]) -> list[Path]:
     return paths
 
 
-def figure(ncols: int, nrows: int = 1, width: float = 4.2, height: float = 3.4, sharey: bool = False):
+def figure(ncols: int, nrows: int = 1, width: float = 4.2, height: float = 3.4, sharey: bool = False,
+           sharex: bool | str = False):
     """A grid of ``nrows`` x ``ncols`` panels (``axes[row, col]``); ``sharey`` for panels comparing
-    the same quantity (docs/style-figures.md)."""
+    the same quantity, ``sharex`` (``True`` or ``"col"``) for rows of panels over the same
+    abscissa: only the bottom row labels its ticks (docs/style-figures.md)."""
     import matplotlib
 
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
 
     fig, axes = plt.subplots(nrows, ncols, figsize=(width * ncols, height * nrows), squeeze=False,
-                             sharey=sharey)
+                             sharey=sharey, sharex=sharex)
     return fig, axes
 
 

@@ -50,7 +50,12 @@ def error_heatmaps(result, outdir: str | Path) -> list[Path]:
         if len(Es) < 2 or len(Hs) < 2:
             continue
         vmax = max(abs(e["err"]) for e in sel) or 1.0
-        fig, axes = plt.subplots(1, len(qs), figsize=(3.6 * len(qs), 3.3), squeeze=False)
+        # one colour scale for every panel (vmax over all): one colour bar, in a slim last column;
+        # one E axis: labelled on the first panel
+        fig, axes = plt.subplots(1, len(qs) + 1, figsize=(3.1 * len(qs) + 0.9, 3.3), squeeze=False,
+                                 gridspec_kw={"width_ratios": [1.0] * len(qs) + [0.06]})
+        for ax in axes[0, 1:-1]:
+            ax.sharey(axes[0, 0])
         for j, q in enumerate(qs):
             Z = np.full((len(Es), len(Hs)), np.nan)
             for e in sel:
@@ -76,12 +81,16 @@ def error_heatmaps(result, outdir: str | Path) -> list[Path]:
             ax.set_xticks(np.arange(len(Hs))[::step_h] + 0.5, [f"{h:.2g}" for h in Hs[::step_h]], fontsize=7,
                           rotation=45)
             step_e = max(1, len(Es) // 8)
-            ax.set_yticks(np.arange(len(Es))[::step_e] + 0.5, [f"{E:.3g}" for E in Es[::step_e]], fontsize=7)
             ax.set_xlabel("H (eq 7)")
-            ax.set_ylabel(r"E = $E_c^*/E_s^*$")
+            if j == 0:
+                ax.set_yticks(np.arange(len(Es))[::step_e] + 0.5, [f"{E:.3g}" for E in Es[::step_e]],
+                              fontsize=7)
+                ax.set_ylabel(r"E = $E_c^*/E_s^*$")
+            else:
+                ax.tick_params(axis="y", labelleft=False)
             ax.set_title(f"{QLABEL[q]}: max |err| {np.nanmax(np.abs(Z)):.2f} %", fontsize=9)
-            cb = fig.colorbar(im, ax=ax, label="error [%]")
-            cb.ax.tick_params(labelsize=7)
+        cb = fig.colorbar(im, cax=axes[0, -1], label="error [%] (every panel)")
+        cb.ax.tick_params(labelsize=7)
         ncase = len({e.get("case") for e in sel})
         fig.suptitle(f"{result.name}: paper's closed-form rule vs reference {ref.upper()}, "
                      f"{ncase} {'elastic-substrate ' if 'rigid' in configs else ''}cases on the (E, H) grid: "
