@@ -107,6 +107,7 @@ def pairwise_plot(result, outdir: str | Path, quantities: Sequence[str] | None =
 
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
+    from matplotlib.lines import Line2D
     from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
     diffs = [d for d in result.crosscheck if quantities is None or d["quantity"] in quantities]
@@ -117,6 +118,7 @@ def pairwise_plot(result, outdir: str | Path, quantities: Sequence[str] | None =
     use_h = all("H" in d and d["H"] > 0 for d in diffs)  # a log axis of H (H = 0: uncoated)
     fig, axes = plt.subplots(1, len(pairs), figsize=(4.4 * len(pairs), 3.4), squeeze=False)
     markers = dict(zip(qs, "os^vD", strict=False))
+    colours = {q: f"C{i}" for i, q in enumerate(qs)}  # a quantity's colour in every panel
     for j, pair in enumerate(pairs):
         ax = axes[0, j]
         # without H the cases are categories: positions 0, 1, ... labelled with the case ids
@@ -126,7 +128,7 @@ def pairwise_plot(result, outdir: str | Path, quantities: Sequence[str] | None =
             if not sel:
                 continue
             x = [d["H"] for d in sel] if use_h else [cases.index(str(d["case"])) for d in sel]
-            ax.plot(x, [d["diff"] for d in sel], markers[q], ms=4, alpha=0.7, mfc="none", label=QLABEL[q])
+            ax.plot(x, [d["diff"] for d in sel], markers[q], ms=4, alpha=0.7, mfc="none", color=colours[q])
         if use_h:
             ax.set_xscale("log")
             # labels at 1, 2, 5 per decade in plain numbers; the default minor labels overlapped
@@ -149,7 +151,10 @@ def pairwise_plot(result, outdir: str | Path, quantities: Sequence[str] | None =
         ax.set_ylabel(f"{m} / {ref} - 1 [%]")
         ax.set_title(f"{pair} (reference)", fontsize=9)
         ax.grid(alpha=0.3, which="both")
-        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))  # off the data
+    # one legend for every panel (the same quantities, markers and colours), right of the last
+    axes[0, -1].legend(handles=[Line2D([], [], ls="none", marker=markers[q], ms=4, alpha=0.7, mfc="none",
+                                       color=colours[q], label=QLABEL[q]) for q in qs],
+                       fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))  # off the data
     fig.suptitle(f"{result.name}: cross-checks, each method's difference from the case's reference "
                  "(the spread is the claims' numerical uncertainty)", fontsize=9)
     fig.set_layout_engine("tight")  # laid out when drawn, in the render process
