@@ -98,12 +98,15 @@ class _Saving:
         if pid == 0:
             code = 1
             try:
+                global _WRITING
+                _WRITING = None
                 gc.disable()  # short-lived: a collection would only copy the parent's pages (fork)
                 signal.signal(signal.SIGINT, signal.SIG_DFL)
                 _render_process_caches()
                 work()
                 code = 0
             except BaseException as exc:  # one line, the parent names the figure again and raises
+                name = _WRITING or name  # the figure being written, in a study's render process
                 print(f"coathertz: figure {name}: {type(exc).__name__}: {exc}", file=sys.stderr, flush=True)
             finally:
                 os._exit(code)
@@ -112,6 +115,7 @@ class _Saving:
 
 
 _SAVING: _Saving | None = None
+_WRITING: str | None = None  # the figure :func:`save` is writing in this process (for its error line)
 
 #: Render processes allowed beyond ``jobs`` before :func:`save` waits for one: the caller goes on
 #: with its next study or figure while the operating system shares the CPUs between them.
@@ -466,7 +470,10 @@ def save(fig, outdir: str | Path, name: str) -> list[Path]:
     state = _SAVING
     paths = [outdir / f"{name}.{ext}" for ext in (state.formats if state else DEFAULT_FORMATS)]
     if state is None or state.jobs == 1:
+        global _WRITING
+        _WRITING = name  # left set if it raises: a render process's error line names it
         _write(fig, paths)
+        _WRITING = None
         plt.close(fig)
         return paths
     state.fork(name, lambda: _write(fig, paths))

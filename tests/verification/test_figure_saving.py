@@ -182,6 +182,7 @@ def test_failed_render_leaves_no_record(tmp_path, capfd):
     with pytest.raises(CoatHertzError), saving(jobs=2):
         plot_study(_Result(5.0), Broken, tmp_path)
     assert "toy" not in (tmp_path / FIGURE_KEYS).read_text()
+    assert "coathertz: figure toy: ValueError" in capfd.readouterr().err  # the figure, not the study
 
 
 def test_tight_layout_measures_each_panel_once(tmp_path, monkeypatch):
