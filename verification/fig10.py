@@ -134,9 +134,9 @@ def analyse(result: C.StudyResult) -> None:
 
 
 def plot(result: C.StudyResult, outdir) -> list:
-    fig, axes = C.figure(4, 2, width=3.7, height=3.3)
+    fig, axes = C.figure(4, 2, width=3.7, height=3.3, sharex=True)  # one H axis: labelled below
     Es = sorted({r["E"] for r in result.rows})
-    H_line = np.geomspace(0.01, 3.0, 60)
+    H_line = np.geomspace(0.01, 3.0, 32)  # 13 a decade: smooth at this width (a prediction each)
     labels = {"r_a": r"$r_a/r_{a0s}$", "r_b": r"$r_b/r_{b0s}$", "delta": r"$\delta/\delta_{0s}$",
               "p": r"$p_0/p_{0s}$"}
     field = {"r_a": "r_a_bar", "r_b": "r_b_bar", "delta": "delta_bar", "p": "p_bar"}
@@ -159,7 +159,8 @@ def plot(result: C.StudyResult, outdir) -> list:
         for j, q in enumerate(QUANTITIES):
             ax = axes[k, j]
             ax.set_xscale("log")
-            ax.set_xlabel(r"$H = h/a_{0s}$")
+            if k == len(INDENTERS) - 1:
+                ax.set_xlabel(r"$H = h/a_{0s}$")
             ax.set_ylabel(labels[q])
             ax.set_title(INDENTERS[ind], fontsize=8)
             ax.grid(alpha=0.3, which="both")

@@ -166,9 +166,10 @@ def plot(result: C.StudyResult, outdir) -> list:
         ax.set_ylabel(rf"$\alpha_{{{q if q != 'delta' else chr(92) + 'delta'}}}$ (inverted)")
         ax.grid(alpha=0.3, which="both")
     if len(Es) <= 8:
-        # below the panels, off the data (inside the first panel it covered the curves)
-        fig.legend(*axes[0, 0].get_legend_handles_labels(), fontsize=7, loc="upper center",
-                   bbox_to_anchor=(0.5, 0.0), ncol=8, frameon=False)
+        # below the panels, off the data (inside the first panel it covered the curves); an Axes
+        # legend, so that the tight layout makes room for it (a figure legend fell outside)
+        axes[0, 1].legend(*axes[0, 0].get_legend_handles_labels(), fontsize=7, loc="upper center",
+                          bbox_to_anchor=(0.5, -0.2), ncol=3, frameon=False)
     axes[0, 2].legend(handles=C.method_handles(methods, closed_form_line=False), fontsize=7,
                       loc="upper left", bbox_to_anchor=(1.01, 1.0))  # off the alpha_delta data
     fig.suptitle("Fig. 4: alpha with which eqs (1), (17), (18) reproduce each numerical result; error bars "

@@ -102,7 +102,9 @@ def plot(result: C.StudyResult, outdir) -> list:
         sym = r"\delta" if q == "delta" else q
         ax.set_ylabel(rf"$\alpha_{{{sym}}}$")
         ax.grid(alpha=0.3, which="both")
-    axes[0, 0].legend(fontsize=6.5)
+    # every panel draws the same series: one legend, right of the last panel (off the data)
+    handles, labels = axes[0, 0].get_legend_handles_labels()
+    axes[0, -1].legend(handles, labels, fontsize=6.5, loc="upper left", bbox_to_anchor=(1.02, 1.0))
     fig.suptitle("Fig. 5: Appendix A alpha curves (lines) and alpha inverted from our results (markers, "
                  "error "
                  "bars from the bars' uncertainty; grey: H <= 0.02, ill-conditioned)", fontsize=9)

@@ -145,8 +145,10 @@ def plot(result: C.StudyResult, outdir) -> list:
         ax.set_ylabel(C.SYMBOL[q] + {"a": r" $= a/a_{0c}$", "p": r" $= p_0/p_{0c}$",
                                      "delta": r" $= \delta/\delta_{0c}$"}[q])
         ax.grid(alpha=0.3, which="both")
-    fig.legend(*axes[0, 1].get_legend_handles_labels(), fontsize=6.5, loc="upper center",
-               bbox_to_anchor=(0.5, 0.0), ncol=4, frameon=False)
+    # right of the last panel, off the data: an Axes legend, so that the tight layout makes room
+    # for it (a figure legend below the panels fell outside the written figure)
+    axes[0, -1].legend(*axes[0, 1].get_legend_handles_labels(), fontsize=6.5, loc="upper left",
+                       bbox_to_anchor=(1.02, 1.0))
     fig.suptitle(r"Fig. 8: rigid substrate, $\nu_c = 0.3$; bars against H for several coating moduli",
                  fontsize=10)
     fig.set_layout_engine("tight")  # laid out when drawn, in the render process

@@ -235,7 +235,8 @@ def _elastic_error_maps(el: list[dict], outdir, uncertainty: dict | None = None)
     Hs = sorted({r["H"] for r in el})
     Es = sorted({r["E"] for r in el})
     refs = sorted({r["reference"] for r in el})
-    fig, axes = C.figure(len(QUANTITIES), 2, width=4.3, height=3.2)
+    # one (H, E) grid: the bottom row labels H, the first column E
+    fig, axes = C.figure(len(QUANTITIES), 2, width=4.3, height=3.2, sharex=True, sharey=True)
     missing = False
     for i, rule_name in enumerate(("paper", "refit")):
         vmax = max(abs(r[rule_name]) for r in el) or 1.0
@@ -261,7 +262,8 @@ def _elastic_error_maps(el: list[dict], outdir, uncertainty: dict | None = None)
                     ax.axvline(k, color="k", lw=1.2, ls="--")
             ax.set_xticks(np.arange(len(Hs)) + 0.5, [f"{H:.2g}" for H in Hs], fontsize=7)
             ax.set_yticks(np.arange(len(Es)) + 0.5, [f"{E:g}" for E in Es], fontsize=7)
-            ax.set_xlabel("H = h/a0s (dashed: end of the paper's range 0.01-3)", fontsize=7.5)
+            if i == 1:
+                ax.set_xlabel("H = h/a0s (dashed: end of the paper's range 0.01-3)", fontsize=7.5)
             if j == 0:
                 ax.set_ylabel(f"{RULE_TITLES[rule_name].split(' (')[0]}\nE = Ec*/Es*", fontsize=8)
             finite = Z[np.isfinite(Z)]

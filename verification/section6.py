@@ -183,12 +183,17 @@ def plot(result: C.StudyResult, outdir) -> list:
         for m, why in t.get("absent", {}).items():
             notes.append(f"{t['example']}: no {C.method_info(m).label} ({why})")
     refs = sorted({result.reference.get(t["example"], "") for t in table} - {""})
-    handles, labels = axes[0, 0].get_legend_handles_labels()
-    fig.legend(handles, labels, loc="lower center", ncol=min(len(labels), 4), fontsize=8,
-               bbox_to_anchor=(0.5, -0.12))
+    handles, labels = [], []  # every source drawn in any panel (the first panel lacks some)
+    for ax in axes[0]:
+        for h_, l_ in zip(*ax.get_legend_handles_labels(), strict=True):
+            if l_ not in labels:
+                handles.append(h_)
+                labels.append(l_)
+    # right of the last panel, with the notes as its title: an Axes legend, so that the tight layout
+    # makes room for it (a figure legend and text below the panels fell outside the written figure)
+    axes[0, -1].legend(handles, labels, loc="upper left", fontsize=7.5, bbox_to_anchor=(1.02, 1.0),
+                       title="\n".join(notes) or None, title_fontsize=7)
     fig.suptitle("Section 6 examples: printed and predicted values and the other methods, relative to the "
                  f"reference ({', '.join(C.method_info(r).label for r in refs)})", fontsize=9)
-    if notes:
-        fig.text(0.5, -0.2, "\n".join(notes), ha="center", va="top", fontsize=7)
     fig.set_layout_engine("tight")  # laid out when drawn, in the render process
     return C.save(fig, outdir, "section6")

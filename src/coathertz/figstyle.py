@@ -16,15 +16,15 @@ import os
 import re
 import signal
 import sys
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-__all__ = ["DEFAULT_FORMATS", "active_formats", "after_renders", "colour", "figure", "method_handles",
-           "method_style", "save", "saving", "series"]
+__all__ = ["DEFAULT_FORMATS", "active_formats", "after_renders", "colour", "draw_elsewhere", "figure",
+           "method_handles", "method_style", "save", "saving", "series"]
 
 
 #: The formats :func:`save` writes unless a :func:`~coathertz.figstyle.saving` block says
@@ -45,19 +45,32 @@ class _Saving:
     running: dict[int, str] = field(default_factory=dict)  # pid -> figure name
     failed: list[str] = field(default_factory=list)
     after: list = field(default_factory=list)  # callables to run once every render succeeded
+    # pid -> (read end of the pipe the process writes its files' paths to, the list to fill)
+    written: dict[int, tuple[int, list[Path]]] = field(default_factory=dict)
 
     def reap(self, block: bool) -> None:
         """Collect this block's finished render processes; with ``block``, wait for the oldest.
         (Only its own children are waited for: a worker pool of the caller is left alone.)"""
         for pid in list(self.running):
+            if block and pid in self.written:  # its paths first: it cannot end while the pipe is full
+                self._read_paths(pid)
             done, status = os.waitpid(pid, 0 if block else os.WNOHANG)
             if done == 0:
                 continue
             name = self.running.pop(pid)
+            if pid in self.written:
+                self._read_paths(pid)
             if os.waitstatus_to_exitcode(status) != 0:
                 self.failed.append(name)
             if block:
                 return
+
+    def _read_paths(self, pid: int) -> None:
+        """Read to its end the pipe of a :func:`draw_elsewhere` process (one path a line) into
+        its list, and close it."""
+        fd, paths = self.written.pop(pid)
+        with os.fdopen(fd, "rb") as fh:
+            paths.extend(Path(line) for line in fh.read().decode().splitlines() if line)
 
     def stop(self) -> None:
         """Kill and collect every render process still running (the block is being left early)."""
@@ -67,10 +80,42 @@ class _Saving:
         for pid in list(self.running):
             with contextlib.suppress(ChildProcessError):
                 os.waitpid(pid, 0)
+        for fd, _ in self.written.values():
+            os.close(fd)
+        self.written.clear()
         self.running.clear()
+
+    def fork(self, name: str, work: Callable[[], None]) -> int | None:
+        """Fork a render process named ``name`` that runs ``work()`` and leaves without any
+        cleanup (exit status 1, with one line naming ``name`` and the error, if it raised);
+        first wait while ``jobs + QUEUED_RENDERS`` are running. Returns the child's pid in this
+        process; never returns in the child."""
+        while len(self.running) >= self.jobs + QUEUED_RENDERS:
+            self.reap(block=True)
+        sys.stdout.flush()
+        sys.stderr.flush()
+        pid = os.fork()
+        if pid == 0:
+            code = 1
+            try:
+                global _WRITING
+                _WRITING = None
+                gc.disable()  # short-lived: a collection would only copy the parent's pages (fork)
+                signal.signal(signal.SIGINT, signal.SIG_DFL)
+                _render_process_caches()
+                work()
+                code = 0
+            except BaseException as exc:  # one line, the parent names the figure again and raises
+                name = _WRITING or name  # the figure being written, in a study's render process
+                print(f"coathertz: figure {name}: {type(exc).__name__}: {exc}", file=sys.stderr, flush=True)
+            finally:
+                os._exit(code)
+        self.running[pid] = name
+        return pid
 
 
 _SAVING: _Saving | None = None
+_WRITING: str | None = None  # the figure :func:`save` is writing in this process (for its error line)
 
 #: Render processes allowed beyond ``jobs`` before :func:`save` waits for one: the caller goes on
 #: with its next study or figure while the operating system shares the CPUs between them.
@@ -301,20 +346,115 @@ def _prepare(fig) -> None:
     _log_ticks_in_view(fig)
 
 
+def _render_process_caches() -> None:
+    """In a render process (a process of ours alone, which only draws figures and exits), let
+    matplotlib keep what it measures of text and markers for every figure instead of measuring
+    it again; the pixels are the same (``tests/verification/test_figure_saving.py``).
+
+    1. The height metrics of a font (the ascent, descent and line gap every text line is laid
+       out with: a font look-up and two font tables read for every text drawn or measured) are
+       kept per font properties and resolution: the Agg renderer gets the method
+       ``_get_font_height_metrics`` matplotlib's text layout asks a renderer for first
+       (``matplotlib.text.Text._get_layout``), computing what the layout computes without it.
+    2. The width, height and descent of a string (matplotlib keeps them per renderer, and each
+       figure has a renderer of its own) are kept for the process, per string, font properties,
+       math flag and resolution: the Agg renderer's measure depends on nothing else.
+    3. Mathtext is parsed once per string, resolution and font for the process (matplotlib
+       keeps the parses per renderer).
+    4. A marker copied from another (every new tick copies the first tick's lines) is copied
+       with its transforms, not deep-copied with its paths (which no marker changes)."""
+    import matplotlib.text
+    from matplotlib.backends.backend_agg import RendererAgg
+    from matplotlib.font_manager import fontManager, get_font
+    from matplotlib.markers import MarkerStyle
+    from matplotlib.mathtext import MathTextParser
+
+    if getattr(RendererAgg, "_coathertz_caches", False):
+        return
+    heights: dict = {}
+
+    def _get_font_height_metrics(self, prop):
+        key = (hash(prop), self.dpi)  # FontProperties compare by this hash
+        if key not in heights:
+            out = (None, None, None)
+            font = get_font(fontManager._find_fonts_by_props(prop))
+            for table_name, linegap_key, ascent_key, descent_key in (
+                    ("OS/2", "sTypoLineGap", "sTypoAscender", "sTypoDescender"),
+                    ("hhea", "lineGap", "ascent", "descent")):
+                table = font.get_sfnt_table(table_name)
+                if table is None:
+                    continue
+                fontsize = prop.get_size_in_points()
+                units_per_em = font.get_sfnt_table("head")["unitsPerEm"]
+                scale = 1 / units_per_em * fontsize * self.dpi / 72  # as matplotlib's layout
+                out = (table[ascent_key] * scale, -table[descent_key] * scale, table[linegap_key] * scale)
+                break
+            heights[key] = out
+        return heights[key]
+
+    metrics: dict = {}
+    measured = matplotlib.text._get_text_metrics_with_cache
+
+    def text_metrics(renderer, text, fontprop, ismath, dpi):
+        if type(renderer) is not RendererAgg:
+            return measured(renderer, text, fontprop, ismath, dpi)
+        key = (text, hash(fontprop), ismath, dpi, renderer.dpi)
+        if key not in metrics:
+            metrics[key] = renderer.get_text_width_height_descent(text, fontprop, ismath)
+        return metrics[key]
+
+    parser = MathTextParser("path")  # what each renderer makes for itself
+    init = RendererAgg.__init__
+
+    def __init__(self, *args, **kwargs):
+        init(self, *args, **kwargs)
+        self.mathtext_parser = parser  # its parses kept per string, resolution and font
+
+    set_marker = MarkerStyle._set_marker
+
+    def _set_marker(self, marker):
+        if not isinstance(marker, MarkerStyle):
+            return set_marker(self, marker)
+        state = dict(marker.__dict__)
+        for k in ("_transform", "_alt_transform", "_user_transform"):
+            if state.get(k) is not None:
+                state[k] = state[k].frozen()  # a copy of its own (``rotated`` changes it in place)
+        self.__dict__ = state
+        return None
+
+    RendererAgg._get_font_height_metrics = _get_font_height_metrics
+    RendererAgg.__init__ = __init__
+    matplotlib.text._get_text_metrics_with_cache = text_metrics
+    MarkerStyle._set_marker = _set_marker
+    RendererAgg._coathertz_caches = True
+
+
+#: zlib level of the PNG files: 3 writes the report's opaque RGB figures in about 60 % of the
+#: time of matplotlib's 6 (RGBA), the files about 5 % smaller (no alpha channel).
+PNG_COMPRESSION = 3
+
+
 def _write_png_drawn(fig, path: Path) -> None:
     """Write the PNG of a figure with a layout engine from one drawing pass.
 
     ``savefig`` draws such a figure twice: once with the renderer switched off, to run the
     layout engine, then again to paint. Drawing the canvas runs the engine itself at the start
-    of the pass, so one pass gives the same pixels: the written files are byte-for-byte those
-    of ``savefig(path, dpi=PNG_DPI)`` (checked on all 29 figures of the quick report, matplotlib
-    3.11; ``tests/verification/test_figure_saving.py``), at about three quarters of the
-    CPU time."""
-    import matplotlib.image
+    of the pass, so one pass gives the same pixels as ``savefig(path, dpi=PNG_DPI)``
+    (``tests/verification/test_figure_saving.py``), at about three quarters of the CPU time. An
+    opaque figure (every report figure) is written as RGB, without the alpha channel, at zlib
+    level :data:`PNG_COMPRESSION`; the PNG keeps matplotlib's resolution and software tags."""
+    import matplotlib
+    from PIL import Image
+    from PIL.PngImagePlugin import PngInfo
 
     fig.set_dpi(PNG_DPI)
     fig.canvas.draw()
-    matplotlib.image.imsave(path, fig.canvas.buffer_rgba(), format="png", origin="upper", dpi=PNG_DPI)
+    rgba = np.asarray(fig.canvas.buffer_rgba())
+    opaque = bool((rgba[..., 3] == 255).all())
+    image = Image.fromarray(np.ascontiguousarray(rgba[..., :3]) if opaque else rgba)  # RGB, RGBA
+    info = PngInfo()
+    info.add_text("Software", f"Matplotlib version{matplotlib.__version__}, https://matplotlib.org/")
+    image.save(path, format="png", dpi=(PNG_DPI, PNG_DPI), pnginfo=info, compress_level=PNG_COMPRESSION)
 
 
 def save(fig, outdir: str | Path, name: str) -> list[Path]:
@@ -330,41 +470,92 @@ def save(fig, outdir: str | Path, name: str) -> list[Path]:
     state = _SAVING
     paths = [outdir / f"{name}.{ext}" for ext in (state.formats if state else DEFAULT_FORMATS)]
     if state is None or state.jobs == 1:
+        global _WRITING
+        _WRITING = name  # left set if it raises: a render process's error line names it
         _write(fig, paths)
+        _WRITING = None
         plt.close(fig)
         return paths
-    while len(state.running) >= state.jobs + QUEUED_RENDERS:
-        state.reap(block=True)
-    sys.stdout.flush()
-    sys.stderr.flush()
-    pid = os.fork()
-    if pid == 0:  # the render process: write the files and leave without running any cleanup
-        code = 1
-        try:
-            gc.disable()  # short-lived: a collection would only copy the parent's pages (fork)
-            signal.signal(signal.SIGINT, signal.SIG_DFL)
-            _write(fig, paths)
-            code = 0
-        except BaseException as exc:  # one line, the parent names the figure again and raises
-            print(f"coathertz: figure {name}: {type(exc).__name__}: {exc}", file=sys.stderr, flush=True)
-        finally:
-            os._exit(code)
-    state.running[pid] = name
+    state.fork(name, lambda: _write(fig, paths))
     plt.close(fig)
     state.reap(block=False)
     return paths
 
 
-def figure(ncols: int, nrows: int = 1, width: float = 4.2, height: float = 3.4, sharey: bool = False):
+@functools.cache
+def _warm_up() -> None:
+    """Draw, once in this process, a small figure with what the report's figures have (a tight
+    layout, mathtext, log and linear ticks, a legend, a colour bar, text of several sizes), so
+    that every render process forked afterwards starts with matplotlib's one-time work done (the
+    mathtext grammar, the fonts loaded, the tick machinery): about 0.3 CPU-s each, once here."""
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(4.0, 3.0), dpi=PNG_DPI)
+    FigureCanvasAgg(fig)
+    ax, ax2 = fig.subplots(1, 2)
+    ax.plot([1e-2, 1.0, 10.0], [1.0, 2.0, 3.0], "o", mfc="none", ms=4, label=r"$\delta_{0s}^*$")
+    ax.set_xscale("log")
+    ax.set_xlabel(r"$H = h/a_{0s}$")
+    ax.set_ylabel("p [MPa]", fontsize=7)
+    ax.legend(fontsize=7)
+    fig.colorbar(ax2.pcolormesh([[0.0, 1.0], [2.0, 3.0]]), ax=ax2, label="error [%]")
+    ax2.set_title("x", fontsize=9)
+    fig.suptitle("warm-up", fontsize=10)
+    fig.set_layout_engine("tight")
+    _prepare(fig)
+    fig.canvas.draw()
+
+
+def draw_elsewhere(name: str, draw: Callable[[], Iterable[Path]]) -> list[Path]:
+    """Run ``draw()``, which builds figures, saves them (:func:`save`) and returns their paths, in
+    a forked render process of the enclosing :func:`~coathertz.figstyle.saving` block (one with
+    more than one job): this process goes on at once, and building the figures costs it nothing.
+    Inside the render process each figure is written as it is saved (the process's text, font
+    and tick caches serve all of them).
+
+    Returns the list of ``draw()``'s paths: at once outside such a block; within one, a list
+    filled when the render process ends (complete at the end of the block, like the files).
+    ``draw`` must not change anything this process reads later: it runs in a copy of it."""
+    state = _SAVING
+    if state is None or state.jobs == 1:
+        return list(draw())
+    _warm_up()
+    paths: list[Path] = []
+    read, write = os.pipe()
+
+    def work() -> None:
+        global _SAVING
+        os.close(read)
+        _SAVING = _Saving(state.formats, 1)  # in this process, each figure written as saved
+        drawn = [str(p) for p in draw()]
+        for fn in _SAVING.after:
+            fn()
+        with os.fdopen(write, "wb") as fh:
+            fh.write("".join(p + "\n" for p in drawn).encode())
+
+    pid = state.fork(name, work)
+    os.close(write)
+    state.written[pid] = (read, paths)
+    state.reap(block=False)
+    return paths
+
+
+def figure(ncols: int, nrows: int = 1, width: float = 4.2, height: float = 3.4, sharey: bool = False,
+           sharex: bool | str = False):
     """A grid of ``nrows`` x ``ncols`` panels (``axes[row, col]``); ``sharey`` for panels comparing
-    the same quantity (docs/style-figures.md)."""
+    the same quantity, ``sharex`` (``True`` or ``"col"``) for rows of panels over the same
+    abscissa: only the bottom row labels its ticks (docs/style-figures.md)."""
     import matplotlib
 
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
 
     fig, axes = plt.subplots(nrows, ncols, figsize=(width * ncols, height * nrows), squeeze=False,
-                             sharey=sharey)
+                             sharey=sharey, sharex=sharex)
     return fig, axes
 
 

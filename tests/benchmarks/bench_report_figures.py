@@ -9,10 +9,16 @@ a study solves in its own ``analyse``), for each study, in this process:
    drawing, the PNG encoding), with ``--split`` the layout (a tight layout run on its own, as the
    engine does at the start of the drawing), the drawing and the encoding apart.
 
+With ``--jobs N`` the figures are instead made as ``coathertz verify`` makes them, in a
+:func:`~coathertz.figstyle.saving` block with ``N`` jobs (forked render processes), one block per
+study: the CPU time of this process (``parent``: what the figures cost the main job's spine) and
+of the render processes (``renders``, from ``getrusage(RUSAGE_CHILDREN)``) are printed.
+
 CPU time is ``time.process_time`` (a loaded machine inflates it less than wall time). The store is
 copied first; the report folder is not touched.
 
-Usage: ``python tests/benchmarks/bench_report_figures.py REPORT_DIR [--study NAME ...] [--split]``
+Usage: ``python tests/benchmarks/bench_report_figures.py REPORT_DIR [--study NAME ...] [--split]
+[--jobs N]``
 (``REPORT_DIR``: the ``--out`` of a ``coathertz verify --quick`` run; default every study but
 ``yield_onset``, whose analysis solves its onsets again).
 """
@@ -33,6 +39,7 @@ def main() -> None:
     ap.add_argument("report", type=Path, help="report folder with store.sqlite")
     ap.add_argument("--study", action="append", help="study (repeatable; default all but yield_onset)")
     ap.add_argument("--split", action="store_true", help="time layout, drawing and encoding apart")
+    ap.add_argument("--jobs", type=int, default=1, help="render in forked processes, as verify does")
     args = ap.parse_args()
 
     import matplotlib.image
@@ -77,6 +84,8 @@ def main() -> None:
             original(fig, paths)
         written.append((paths[0].name, time.process_time() - t))
 
+    if args.jobs > 1:
+        return _forked(args, names, tmp, store, methods)
     figstyle._write = timed
     total = {"analyse": 0.0, "build": 0.0, "write": 0.0}
     print(f"{'study':12s} {'analyse':>8s} {'build':>7s} {'write':>7s}  [CPU-s]  per figure")
@@ -105,6 +114,39 @@ def main() -> None:
           f"({len(written)} figures)")
     if args.split:
         print("writing: " + ", ".join(f"{k} {v:.2f}" for k, v in parts.items()))
+
+
+def _forked(args, names, tmp, store, methods) -> None:
+    """Per study: its analysis, then its figures in a saving block of ``args.jobs`` jobs (this
+    process's CPU and its render processes')."""
+    import resource
+
+    from coathertz import figstyle
+    from coathertz.report import plot_study
+    from coathertz.verification import get_study, run_study
+
+    def children() -> float:
+        r = resource.getrusage(resource.RUSAGE_CHILDREN)
+        return r.ru_utime + r.ru_stime
+
+    total = {"parent": 0.0, "renders": 0.0}
+    print(f"{'study':12s} {'parent':>7s} {'renders':>8s}  [CPU-s, {args.jobs} jobs]  figures")
+    try:
+        for name in names:
+            mod = get_study(name)
+            result = run_study(mod, "quick", methods, store, {"workers": 1, "progress": False})
+            t, c = time.process_time(), children()
+            with figstyle.saving(("png",), args.jobs):
+                paths = plot_study(result, mod, tmp / "figures")
+            parent, renders = time.process_time() - t, children() - c
+            total["parent"] += parent
+            total["renders"] += renders
+            print(f"{name:12s} {parent:7.2f} {renders:8.2f}  {len(paths)}", flush=True)
+    finally:
+        store.close()
+        shutil.rmtree(tmp, ignore_errors=True)
+    print(f"{'total':12s} {total['parent']:7.2f} {total['renders']:8.2f}  "
+          f"(sum {total['parent'] + total['renders']:.2f})")
 
 
 if __name__ == "__main__":

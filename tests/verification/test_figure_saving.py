@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import os
 import time
+from pathlib import Path
 
 import pytest
 
@@ -61,7 +62,10 @@ def test_forked_renders_equal_serial_ones(tmp_path, forks):
 @pytest.mark.parametrize("engine", ["tight", "constrained"])
 def test_one_pass_png_equals_savefig(tmp_path, engine):
     """A figure with a layout engine is written from one drawing pass (``_write_png_drawn``):
-    the same bytes as matplotlib's ``savefig`` at the same resolution, which draws it twice."""
+    the same pixels as matplotlib's ``savefig`` at the same resolution, which draws it twice."""
+    import numpy as np
+    from PIL import Image
+
     from coathertz.figstyle import PNG_DPI
 
     def draw():
@@ -76,7 +80,12 @@ def test_one_pass_png_equals_savefig(tmp_path, engine):
     ref = draw()
     ref._suptitle.set_wrap(True)
     ref.savefig(tmp_path / "ref.png", dpi=PNG_DPI)
-    assert ours.read_bytes() == (tmp_path / "ref.png").read_bytes()
+    with Image.open(ours) as a, Image.open(tmp_path / "ref.png") as b:
+        assert a.mode == "RGB" and b.mode == "RGBA"  # opaque: written without the alpha channel
+        assert a.info["dpi"] == pytest.approx(b.info["dpi"]) and a.info["Software"] == b.info["Software"]
+        theirs = np.asarray(b)
+        assert (theirs[..., 3] == 255).all()
+        assert np.array_equal(np.asarray(a), theirs[..., :3])  # the same pixels
 
 
 def test_svg_only_on_request(tmp_path):
@@ -116,12 +125,16 @@ class _Result:
 
 class _Study:
     GENERIC_FIGURES = False
-    calls = 0
 
     @classmethod
     def plot(cls, result, outdir):
-        cls.calls += 1
+        with (Path(outdir) / "calls.txt").open("a") as fh:  # drawn in a render process: counted on disk
+            fh.write("drawn\n")
         return save(_draw(f"value {result.value}"), outdir, "toy")
+
+
+def _calls(folder) -> int:
+    return len((folder / "calls.txt").read_text().splitlines())
 
 
 def test_unchanged_figures_are_not_redrawn(tmp_path):
@@ -130,11 +143,30 @@ def test_unchanged_figures_are_not_redrawn(tmp_path):
     for value, drawn in ((1.0, 1), (1.0, 1), (2.0, 2)):  # same numbers: kept; new numbers: redrawn
         with saving(jobs=2):
             paths = plot_study(_Result(value), _Study, tmp_path)
-        assert _Study.calls == drawn and paths[0].stat().st_size > 5000
+        assert _calls(tmp_path) == drawn and paths[0].stat().st_size > 5000
     paths[0].unlink()  # a figure gone from disk is drawn again
     with saving(jobs=2):
         plot_study(_Result(2.0), _Study, tmp_path)
-    assert _Study.calls == 3 and paths[0].is_file()
+    assert _calls(tmp_path) == 3 and paths[0].is_file()
+
+
+def test_study_figures_are_built_in_the_render_process(tmp_path):
+    """Within a saving block the study's figures are built and written by a render process: this
+    process runs none of ``plot``, and learns the written paths when the block ends."""
+    from coathertz.report import plot_study
+
+    class Where(_Study):
+        @classmethod
+        def plot(cls, result, outdir):
+            (Path(outdir) / "pid.txt").write_text(str(os.getpid()))
+            return [*save(_draw("a"), outdir, "toy_a"), *save(_draw("b"), outdir, "toy_b")]
+
+    with saving(jobs=2):
+        paths = plot_study(_Result(3.0), Where, tmp_path)
+        assert paths == [] or len(paths) == 2  # filled when its process ends
+    assert [p.name for p in paths] == ["toy_a.png", "toy_b.png"]
+    assert all(p.stat().st_size > 5000 for p in paths)
+    assert int((tmp_path / "pid.txt").read_text()) != os.getpid()
 
 
 def test_failed_render_leaves_no_record(tmp_path, capfd):
@@ -150,6 +182,7 @@ def test_failed_render_leaves_no_record(tmp_path, capfd):
     with pytest.raises(CoatHertzError), saving(jobs=2):
         plot_study(_Result(5.0), Broken, tmp_path)
     assert "toy" not in (tmp_path / FIGURE_KEYS).read_text()
+    assert "coathertz: figure toy: ValueError" in capfd.readouterr().err  # the figure, not the study
 
 
 def test_tight_layout_measures_each_panel_once(tmp_path, monkeypatch):
@@ -239,3 +272,41 @@ def test_log_axes_make_only_the_ticks_in_view(tmp_path):
     assert drawn[1] == [(loc, plain_power(s)) for loc, s in drawn[0]]
     # 0.1 and 1; 0.02-0.09, 0.2-0.9, 2 and 3
     assert len(drawn[0]) == 20 and made[0] > 20 and made[1] == 20, (drawn, made)
+
+
+def _rich(label: str):
+    """A figure with what the render process's caches keep: text of several sizes and fonts,
+    mathtext, log ticks, markers (plain, open, rotated), a colour bar, a legend."""
+    from matplotlib.markers import MarkerStyle
+
+    fig, axes = figure(2)
+    ax0, ax1 = axes[0]
+    x = [1e-2, 1e-1, 1.0, 10.0]
+    ax0.plot(x, [1.0, 2.0, 4.0, 3.0], "o", mfc="none", ms=7, label=r"$\delta/\delta_{0s}$")
+    ax0.plot(x, [2.0, 1.0, 3.0, 5.0], marker=MarkerStyle("^").rotated(deg=30), ls="none", label="rotated")
+    ax0.set_xscale("log")
+    ax0.set_xlabel(r"$H = h/a_{0s}$")
+    ax0.set_ylabel("p [MPa]", fontsize=7)
+    ax0.legend(fontsize=7, title=label, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    im = ax1.pcolormesh([[0.0, 1.0], [2.0, 3.0]])
+    fig.colorbar(im, ax=ax1, label="error [%]")
+    ax1.set_title(label, fontsize=9, fontweight="bold")
+    fig.suptitle(f"{label}: a title that wraps " * 4, fontsize=10)
+    fig.set_layout_engine("tight")
+    return fig
+
+
+def test_render_process_caches_keep_the_pixels(tmp_path):
+    """Figures built and written in one render process (whose text and marker caches serve all
+    of them, :func:`~coathertz.figstyle._render_process_caches`) are byte-for-byte those written
+    here without the caches."""
+    from coathertz.figstyle import draw_elsewhere
+
+    labels = ["first", "second", "first"]  # the third repeats the first's strings: cache hits
+    serial = [save(_rich(s), tmp_path / "one", f"f{i}")[0] for i, s in enumerate(labels)]
+    with saving(jobs=2):
+        forked = draw_elsewhere("rich", lambda: [save(_rich(s), tmp_path / "two", f"f{i}")[0]
+                                                 for i, s in enumerate(labels)])
+    assert [p.name for p in forked] == [p.name for p in serial]
+    for a, b in zip(serial, forked, strict=True):
+        assert a.read_bytes() == b.read_bytes(), b

@@ -124,11 +124,13 @@ def plot_study(result: Any, module: Any | None, figdir: str | Path) -> list[Path
     """Draw the figures of one study result: the study module's own (``module.plot``) and the
     report's E x H error maps and pairwise plots, unless the module sets ``GENERIC_FIGURES =
     False``. Also stores the cross-check summaries the pages show in ``result.extra``. Inside a
-    :func:`coathertz.figstyle.saving` block the files are rendered in the background.
+    :func:`coathertz.figstyle.saving` block the figures are built and rendered in the background,
+    in a process of their own (:func:`coathertz.figstyle.draw_elsewhere`), and the list returned
+    is complete, like the files, when the block ends.
 
     Figures drawn from the same numbers by the same code (:func:`figure_key`, recorded in
     ``figdir/.figure-keys.json``) and still on disk are not drawn again."""
-    from coathertz.figstyle import active_formats, after_renders
+    from coathertz.figstyle import active_formats, after_renders, draw_elsewhere
     from coathertz.methods import method_names
     from coathertz.report.figures import error_heatmaps, pairwise_plot
 
@@ -148,10 +150,16 @@ def plot_study(result: Any, module: Any | None, figdir: str | Path) -> list[Path
     old = keys.get(result.name, {})
     if old.get("key") == key and old.get("files") and all((figdir / f).is_file() for f in old["files"]):
         return [figdir / f for f in old["files"]]
-    paths: list[Path] = list(module.plot(result, figdir)) if module is not None else []
-    if generic:
-        paths += error_heatmaps(result, figdir)
-        paths += pairwise_plot(result, figdir)
+
+    def draw() -> list[Path]:
+        drawn: list[Path] = list(module.plot(result, figdir)) if module is not None else []
+        if generic:
+            drawn += error_heatmaps(result, figdir)
+            drawn += pairwise_plot(result, figdir)
+        return drawn
+
+    # built and written in a render process of its own (in a saving block), this one goes on
+    paths = draw_elsewhere(result.name, draw)
 
     def record() -> None:  # only once the files are complete
         try:

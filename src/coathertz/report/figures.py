@@ -50,7 +50,12 @@ def error_heatmaps(result, outdir: str | Path) -> list[Path]:
         if len(Es) < 2 or len(Hs) < 2:
             continue
         vmax = max(abs(e["err"]) for e in sel) or 1.0
-        fig, axes = plt.subplots(1, len(qs), figsize=(3.6 * len(qs), 3.3), squeeze=False)
+        # one colour scale for every panel (vmax over all): one colour bar, in a slim last column;
+        # one E axis: labelled on the first panel
+        fig, axes = plt.subplots(1, len(qs) + 1, figsize=(3.1 * len(qs) + 0.9, 3.3), squeeze=False,
+                                 gridspec_kw={"width_ratios": [1.0] * len(qs) + [0.06]})
+        for ax in axes[0, 1:-1]:
+            ax.sharey(axes[0, 0])
         for j, q in enumerate(qs):
             Z = np.full((len(Es), len(Hs)), np.nan)
             for e in sel:
@@ -76,12 +81,16 @@ def error_heatmaps(result, outdir: str | Path) -> list[Path]:
             ax.set_xticks(np.arange(len(Hs))[::step_h] + 0.5, [f"{h:.2g}" for h in Hs[::step_h]], fontsize=7,
                           rotation=45)
             step_e = max(1, len(Es) // 8)
-            ax.set_yticks(np.arange(len(Es))[::step_e] + 0.5, [f"{E:.3g}" for E in Es[::step_e]], fontsize=7)
             ax.set_xlabel("H (eq 7)")
-            ax.set_ylabel(r"E = $E_c^*/E_s^*$")
+            if j == 0:
+                ax.set_yticks(np.arange(len(Es))[::step_e] + 0.5, [f"{E:.3g}" for E in Es[::step_e]],
+                              fontsize=7)
+                ax.set_ylabel(r"E = $E_c^*/E_s^*$")
+            else:
+                ax.tick_params(axis="y", labelleft=False)
             ax.set_title(f"{QLABEL[q]}: max |err| {np.nanmax(np.abs(Z)):.2f} %", fontsize=9)
-            cb = fig.colorbar(im, ax=ax, label="error [%]")
-            cb.ax.tick_params(labelsize=7)
+        cb = fig.colorbar(im, cax=axes[0, -1], label="error [%] (every panel)")
+        cb.ax.tick_params(labelsize=7)
         ncase = len({e.get("case") for e in sel})
         fig.suptitle(f"{result.name}: paper's closed-form rule vs reference {ref.upper()}, "
                      f"{ncase} {'elastic-substrate ' if 'rigid' in configs else ''}cases on the (E, H) grid: "
@@ -98,6 +107,7 @@ def pairwise_plot(result, outdir: str | Path, quantities: Sequence[str] | None =
 
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
+    from matplotlib.lines import Line2D
     from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
     diffs = [d for d in result.crosscheck if quantities is None or d["quantity"] in quantities]
@@ -108,6 +118,7 @@ def pairwise_plot(result, outdir: str | Path, quantities: Sequence[str] | None =
     use_h = all("H" in d and d["H"] > 0 for d in diffs)  # a log axis of H (H = 0: uncoated)
     fig, axes = plt.subplots(1, len(pairs), figsize=(4.4 * len(pairs), 3.4), squeeze=False)
     markers = dict(zip(qs, "os^vD", strict=False))
+    colours = {q: f"C{i}" for i, q in enumerate(qs)}  # a quantity's colour in every panel
     for j, pair in enumerate(pairs):
         ax = axes[0, j]
         # without H the cases are categories: positions 0, 1, ... labelled with the case ids
@@ -117,7 +128,7 @@ def pairwise_plot(result, outdir: str | Path, quantities: Sequence[str] | None =
             if not sel:
                 continue
             x = [d["H"] for d in sel] if use_h else [cases.index(str(d["case"])) for d in sel]
-            ax.plot(x, [d["diff"] for d in sel], markers[q], ms=4, alpha=0.7, mfc="none", label=QLABEL[q])
+            ax.plot(x, [d["diff"] for d in sel], markers[q], ms=4, alpha=0.7, mfc="none", color=colours[q])
         if use_h:
             ax.set_xscale("log")
             # labels at 1, 2, 5 per decade in plain numbers; the default minor labels overlapped
@@ -140,7 +151,10 @@ def pairwise_plot(result, outdir: str | Path, quantities: Sequence[str] | None =
         ax.set_ylabel(f"{m} / {ref} - 1 [%]")
         ax.set_title(f"{pair} (reference)", fontsize=9)
         ax.grid(alpha=0.3, which="both")
-        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))  # off the data
+    # one legend for every panel (the same quantities, markers and colours), right of the last
+    axes[0, -1].legend(handles=[Line2D([], [], ls="none", marker=markers[q], ms=4, alpha=0.7, mfc="none",
+                                       color=colours[q], label=QLABEL[q]) for q in qs],
+                       fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))  # off the data
     fig.suptitle(f"{result.name}: cross-checks, each method's difference from the case's reference "
                  "(the spread is the claims' numerical uncertainty)", fontsize=9)
     fig.set_layout_engine("tight")  # laid out when drawn, in the render process
