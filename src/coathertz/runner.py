@@ -457,7 +457,7 @@ _POOL: tuple[ProcessPoolExecutor, int] | None = None
 AHEAD_PER_WORKER = 3
 #: Chunks started ahead per worker at most, finished ones that no call has adopted yet included:
 #: what the workers may solve while this process analyses and draws (half a minute of work and
-#: more); an interrupted run stores the finished ones (:meth:`_Ahead.salvage`).
+#: more); an interrupted run stores the finished ones (``_Ahead.salvage``).
 AHEAD_HELD_PER_WORKER = 32
 #: Seconds between two checks of the feeder thread when no chunk has finished.
 FEED_INTERVAL = 0.25
