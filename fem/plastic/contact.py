@@ -320,7 +320,7 @@ class IncrementalContact:
         """``(F, K, trial states, contact forces, residual)`` at ``u``: the out-of-balance force on
         the free dofs and (load control) the load balance on the active set, over the force scale."""
         g = self.geom
-        F, K, _, trial = self.asm.evaluate(u, states)
+        F, K, _, trial = self.asm.evaluate(u, states, stresses=False)
         R = F.copy()
         R[g.fixed] = 0.0
         R[g.cand[active]] = 0.0
@@ -343,7 +343,7 @@ class IncrementalContact:
             # release a ring of nodes at once)
             active = (g.g0 - 0.5 * target - state.u[g.cand]) < 0
         u = state.u.copy()
-        F, K, _, _ = self.asm.evaluate(u, state.states)
+        F, K, _, _ = self.asm.evaluate(u, state.states, stresses=False)
         residuals = []
         self.last_attempt = {"target": target, "residuals": residuals, "active": []}  # diagnostics
         seen: set[bytes] = set()
