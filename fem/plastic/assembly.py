@@ -215,7 +215,7 @@ class BBarAssembler:
             self._bsp_cache: dict[int, sp.csr_matrix] = {}
         if k not in self._bsp_cache:
             Bq, ed = self._Bq[k], self._eq[k]
-            nl, ne, nq = Bq.shape[1:]
+            ne, nq = Bq.shape[2:]
             rows = np.broadcast_to(np.arange(4 * ne * nq).reshape(4, 1, ne, nq), Bq.shape)
             cols = np.broadcast_to(ed[None, :, :, None], Bq.shape)
             self._bsp_cache[k] = sp.csr_matrix((Bq.ravel(), (rows.ravel(), cols.ravel())),
