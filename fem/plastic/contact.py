@@ -279,14 +279,15 @@ class IncrementalContact:
         fixed = fixed[order]
         zf = np.zeros(len(g.fixed))
         nA = len(A)
+        KA = K[A]  # the contact forces need the active rows only (the same numbers as (K u)[A])
         if self.control == "load":
             W = target
             v1 = np.concatenate([g.vals0 + W * g.vals_unit, g.g0[active]])[order]
             v2 = np.concatenate([zf, -np.ones(nA)])[order]
             u1, u2 = self._solve(K, [rhs, np.zeros_like(rhs)], fixed, [v1, v2], active)
             self.factorisations += 1
-            l1 = (rhs - K @ u1)[A]
-            l2 = -(K @ u2)[A]
+            l1 = rhs[A] - KA @ u1
+            l2 = -(KA @ u2)
             if nA == 0 or abs(l2.sum()) == 0.0:
                 return u1, math.nan, W, np.zeros(0)
             delta = (W - l1.sum()) / l2.sum()
@@ -296,8 +297,8 @@ class IncrementalContact:
         v3 = np.concatenate([g.vals_unit, np.zeros(nA)])[order]
         u1, u3 = self._solve(K, [rhs, np.zeros_like(rhs)], fixed, [v1, v3], active)
         self.factorisations += 1
-        l1 = (rhs - K @ u1)[A]
-        l3 = -(K @ u3)[A]
+        l1 = rhs[A] - KA @ u1
+        l3 = -(KA @ u3)
         W = l1.sum() / (1.0 - l3.sum()) if nA else 0.0
         return u1 + W * u3, delta, W, l1 + W * l3
 
