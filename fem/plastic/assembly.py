@@ -29,6 +29,13 @@ once, plus the change of the other elements' matrices; each region's strain oper
 once. Measured on the quick ``indentation`` path (513 elements, 31 factorisations): 1.4-1.7 s
 CPU against 2.6-2.9 s before, the README's approach path with unloading (default mesh, 95
 factorisations) 42 s against 52 s; the same numbers to 1e-14.
+
+In the Newton loop (``evaluate(..., stresses=False)``) the law is evaluated only at the elements
+that may depart from elasticity (a plastic history or a trial state beyond the yield surface,
+found from the strain of every point by one sparse product), and the internal force is the
+elastic stiffness times ``u`` plus their correction ``int B^T (sigma - D_el eps)``: 17 ms against
+31 ms per call with 302 of 3528 elements yielded (README load path, 1 BLAS thread), the internal
+force the same to 4e-13 of the load.
 """
 
 from __future__ import annotations

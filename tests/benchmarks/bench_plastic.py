@@ -47,6 +47,18 @@ Box matrix gathered into a structure built once per box, and ``t`` not solved ag
 - delta/delta_c = 200 (E/Y = 1000, 20 steps): 43.1 -> 40.8 s CPU, 197 iterations, largest load
   364.433 N both.
 
+Newton-loop assembly restricted to the elements that may yield (``BBarAssembler.evaluate(...,
+stresses=False)``), the box's factors kept across the active-set changes of elastic unloading
+(``ElasticCondensation._solve_free``), contact forces from the active rows only; the base commit's
+``fem/plastic`` and the new one run alternately in one shell (``coathertz.fem.__path__`` pointed
+at a copy of each), 1 BLAS thread, the shared 2-core machine at load 5-8, CPU time:
+
+- README load path: 11.7 / 10.8 s (base, two runs) -> 8.8 / 9.4 s (new), 78 iterations both, box
+  factors reused 11 -> 39 times, far-field solves for ``t`` 62 -> 20, final load 0 and residual
+  depth 246.28 nm both;
+- delta/delta_c = 200 (E/Y = 1000, 20 steps): 41.8 -> 37.3 s, 197 iterations both, largest load
+  364.433 N both.
+
 The targets (3 s, 30 s) are not reached: the box's factorisation (up to 12k unknowns), one or two solves
 with the far field's factor and the assembly (~40 ms) per iteration remain, at 4-10 iterations
 per increment.
