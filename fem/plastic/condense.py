@@ -182,10 +182,15 @@ class ElasticCondensation:
         return bool(self.in_box[nonelastic].all() and self.interior[active_dofs].all())
 
     def solve(self, K: sp.csr_matrix, rhs: list[np.ndarray], fixed: np.ndarray,
-              vals: list[np.ndarray], force_scale: float = 0.0) -> list[np.ndarray]:
+              vals: list[np.ndarray], force_scale: float = 0.0, combine=None):
         """``K u = rhs_k`` with ``u[fixed] = vals_k`` for each pair (``fixed``: the essential dofs
         and the active contact dofs; ``force_scale`` [N] the path's largest load, the scale of
-        :data:`T_REUSE`; 0 solves for every nonzero ``b_e``)."""
+        :data:`T_REUSE`; 0 solves for every nonzero ``b_e``): the list of the ``u_k``, or with
+        ``combine`` the one vector ``sum_k c_k u_k``, ``c = combine(u)``, where ``combine`` gets the
+        ``u_k`` before their far field ``u_e`` is solved (zero there; it may read them on the box's
+        interior only, e.g. the active contact dofs' rows of ``K u``) and the far field is solved
+        once, for the combination (linear in the right-hand sides: exact; one right-hand side
+        instead of ``m`` in the far field's triangular solves)."""
         n = K.shape[0]
         m = len(rhs)
         U0 = np.zeros((n, m))
@@ -216,10 +221,15 @@ class ElasticCondensation:
             self._free = None
             un = lu.solve(bn)
         ug = un[off:]
-        xe = self.factor.solve(np.vstack([be, t + self.S @ ug]))[: self.ne]
         U = U0
         free = ~fixed_box
         U[self.order[free]] = un[free]
+        if combine is not None:
+            c = np.asarray(combine([U[:, k] for k in range(m)]), dtype=float)
+            u = sum((c[k] * U[:, k] for k in range(1, m)), c[0] * U[:, 0])
+            u[self.e] = self.factor.solve(np.concatenate([be @ c, t @ c + self.S @ (ug @ c)]))[: self.ne]
+            return u
+        xe = self.factor.solve(np.vstack([be, t + self.S @ ug]))[: self.ne]
         U[self.e] = xe
         return [U[:, k].copy() for k in range(m)]
 

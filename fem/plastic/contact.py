@@ -205,6 +205,12 @@ def _solve_constrained(K, rhs, fixed, vals_list, grid=None):
     return out
 
 
+def _combined(cols: list[np.ndarray], combine) -> np.ndarray:
+    """``sum_k c_k cols_k`` with ``c = combine(cols)``."""
+    c = combine(cols)
+    return sum((ck * col for ck, col in zip(c[1:], cols[1:], strict=True)), cols[0] * c[0])
+
+
 class IncrementalContact:
     """The increment loop (module docstring) for one assembled model.
 
@@ -233,26 +239,29 @@ class IncrementalContact:
         states = [law.initial_state(self.asm.w[els].shape) for els, law in self.asm.regions]
         return PathState(np.zeros(self.asm.n), states, np.zeros(len(self.geom.cand), dtype=bool))
 
-    def _solve(self, K, rhs, fixed, vals, active):
-        """``K u = rhs_k``, ``u[fixed] = vals_k``: through the elastic far field's condensation where
-        it is exact (:mod:`~coathertz.fem.plastic.condense`, rebuilt larger when the plastic zone or
-        the contact leaves its box), else one factorisation of the whole tangent."""
+    def _solve(self, K, rhs, fixed, vals, active, combine):
+        """``sum_k c_k u_k`` with ``K u_k = rhs_k``, ``u_k[fixed] = vals_k`` and ``c = combine(u)``
+        (``combine`` reads the solutions on the rows of the active contact dofs only; in the
+        condensed solve it gets them before their far field is solved, which is then solved once,
+        for the combination): through the elastic far field's condensation where it is exact
+        (:mod:`~coathertz.fem.plastic.condense`, rebuilt larger when the plastic zone or the contact
+        leaves its box), else one factorisation of the whole tangent."""
         g = self.geom
         nonelastic = getattr(K, "nonelastic", None)
         if not self.settings.condense or g.grid is None or nonelastic is None:
             g.solves["full"] += 1
-            return _solve_constrained(K, rhs, fixed, vals, g.grid)
+            return _combined(_solve_constrained(K, rhs, fixed, vals, g.grid), combine)
         A = g.cand[active]
         c = g.condensation
         if c is None or (c is not False and not c.valid(nonelastic, A)):
             c = self._condense(nonelastic, active, None if c is None else c.box)
         if c is False:
             g.solves["full"] += 1
-            return _solve_constrained(K, rhs, fixed, vals, g.grid)
+            return _combined(_solve_constrained(K, rhs, fixed, vals, g.grid), combine)
         g.solves["condensed"] += 1
         keys = ("reused", "t_solves", "t_reused")
         before = [getattr(c, k) for k in keys]
-        out = c.solve(K, rhs, fixed, vals, self.scale)
+        out = c.solve(K, rhs, fixed, vals, self.scale, combine)
         for k, b in zip(keys, before, strict=True):
             g.solves[k] += getattr(c, k) - b
         return out
@@ -292,23 +301,36 @@ class IncrementalContact:
             W = target
             v1 = np.concatenate([g.vals0 + W * g.vals_unit, g.g0[active]])[order]
             v2 = np.concatenate([zf, -np.ones(nA)])[order]
-            u1, u2 = self._solve(K, [rhs, np.zeros_like(rhs)], fixed, [v1, v2], active)
+            out: dict = {}
+
+            def by_load(cols):  # the approach that carries the load W: u = u1 + delta u2
+                l1 = rhs[A] - KA @ cols[0]
+                l2 = -(KA @ cols[1])
+                if nA == 0 or abs(l2.sum()) == 0.0:
+                    out.update(delta=math.nan, lam=np.zeros(0))
+                    return 1.0, 0.0
+                delta = (W - l1.sum()) / l2.sum()
+                out.update(delta=delta, lam=l1 + delta * l2)
+                return 1.0, delta
+
+            u = self._solve(K, [rhs, np.zeros_like(rhs)], fixed, [v1, v2], active, by_load)
             self.factorisations += 1
-            l1 = rhs[A] - KA @ u1
-            l2 = -(KA @ u2)
-            if nA == 0 or abs(l2.sum()) == 0.0:
-                return u1, math.nan, W, np.zeros(0)
-            delta = (W - l1.sum()) / l2.sum()
-            return u1 + delta * u2, delta, W, l1 + delta * l2
+            return u, out["delta"], W, out["lam"]
         delta = target
         v1 = np.concatenate([g.vals0, g.g0[active] - delta])[order]
         v3 = np.concatenate([g.vals_unit, np.zeros(nA)])[order]
-        u1, u3 = self._solve(K, [rhs, np.zeros_like(rhs)], fixed, [v1, v3], active)
+        out = {}
+
+        def by_approach(cols):  # the load that the far field must carry: u = u1 + W u3
+            l1 = rhs[A] - KA @ cols[0]
+            l3 = -(KA @ cols[1])
+            W = l1.sum() / (1.0 - l3.sum()) if nA else 0.0
+            out.update(W=W, lam=l1 + W * l3)
+            return 1.0, W
+
+        u = self._solve(K, [rhs, np.zeros_like(rhs)], fixed, [v1, v3], active, by_approach)
         self.factorisations += 1
-        l1 = rhs[A] - KA @ u1
-        l3 = -(KA @ u3)
-        W = l1.sum() / (1.0 - l3.sum()) if nA else 0.0
-        return u1 + W * u3, delta, W, l1 + W * l3
+        return u, delta, out["W"], out["lam"]
 
     def _update_active(self, active, lam_full, gap, delta):
         """New active set; round-off-level violations at single nodes do not change it."""
