@@ -399,10 +399,13 @@ class IncrementalContact:
             new_active = active if no_contact else self._update_active(active, lam_full, gap, delta)
 
             F, K, trial, lam_eq, res = self._residual(u_new, state.states, active, W)
-            if s.line_search and residuals and res > residuals[-1]:
+            if s.line_search and residuals and res > residuals[-1] and res > s.rtol:
                 # backtracking: the full step raised the out-of-balance force (perfectly plastic
                 # points switching between elastic and plastic overshoot); keep the best of the
                 # shortened steps if it is better. The active set update stays the full step's.
+                # Not for a step already within the tolerance: its out-of-balance force is
+                # round-off (elastic unloading while the active set shrinks: 1e-12 of the load, up
+                # and down), and a shortened step would only undo part of the active-set change.
                 du = u_new - u
                 for alpha in LINE_SEARCH:
                     out_a = self._residual(u + alpha * du, state.states, active, W)
