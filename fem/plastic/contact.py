@@ -42,12 +42,13 @@ is gathered, not sliced, and ``t`` is not solved again within an increment where
 round-off only: the same path 16.0 -> 14.8 s CPU, same run). Then the assembly restricted to the
 elements that may yield (:mod:`~coathertz.fem.plastic.assembly`) and the box's factors kept across
 the active-set changes of elastic unloading (:mod:`~coathertz.fem.plastic.condense`): the README
-load path 11.7 / 10.8 -> 8.8 / 9.4 s CPU (old and new code alternately in one shell, 1 BLAS thread,
-the shared machine at load 5-8), delta/delta_c = 200 (E/Y = 1000, 20 steps) 41.8 -> 37.3 s; the
-same iterations, loads and residual depth. Where the README load path's 9.3 s CPU go now: the box
-factorisations 2.7 s (45), the rest of the condensed solves (far-field solves, gathers) 1.9 s, the
-assembly 1.8 s (151 calls), the contact-radius fit 0.8 s, the two condensations 0.7 s, the final
-stress report 0.6 s. Tried and dropped: GMRES on the box
+load path 13.3 / 10.7 -> 8.2 / 7.4 s CPU (old and new code alternately in one shell, 1 BLAS thread,
+the shared machine at load 5-10; with the far field solved once per iteration for the combined
+solution and no line search for a step already within the tolerance), delta/delta_c = 200
+(E/Y = 1000, 20 steps) 39.9 -> 35.5 s; the same iterations, loads and residual depth. Where the
+README load path's 8.3 s CPU go now: the box factorisations 2.6 s (45), the rest of the condensed
+solves (far-field solves, gathers) 1.8 s, the assembly 1.45 s (103 calls), the contact-radius fit
+0.7 s, the two condensations 0.6 s, the final stress report 0.6 s. Tried and dropped: GMRES on the box
 system right-preconditioned with the box's last factorisation (same active set; true residual
 1e-12 of the right-hand side, at most 12 iterations, else factorised again): on the README load
 path 21 attempts, 10 gave up, 275 preconditioner solves at ~3.4 ms against ~57 ms a factorisation,
