@@ -119,7 +119,7 @@ class BBarAssembler:
         Returns ``(F_int, K or None, sigmas, new_states)``. With the tangent, ``K.nonelastic``
         holds the (global) indices of the elements whose tangent is not the elastic one.
         ``stresses=False`` (with the tangent; the Newton loop) returns ``None`` for ``sigmas`` and
-        runs the law only where it may depart from elasticity (:meth:`_evaluate_inelastic`).
+        runs the law only where it may depart from elasticity (``_evaluate_inelastic``).
         """
         if tangent and not stresses:
             return self._evaluate_inelastic(u, states)

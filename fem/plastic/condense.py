@@ -27,7 +27,7 @@ active set are those of the last solve (elastic unloading: the next increment's 
 iteration). Where the tangent is the last one's but the active set changed (elastic unloading
 releases the contact node by node), the box with no dof decoupled is factorised once for that
 tangent and each active set is imposed by a capacitance matrix on the active contact dofs
-(:meth:`ElasticCondensation._solve_free`): on the README load path 39 of 78 Newton iterations
+(``ElasticCondensation._solve_free``): on the README load path 39 of 78 Newton iterations
 reuse factors (11 before), CPU 10.6 -> 8.6-8.8 s (separate runs, shared machine). SuperLU's
 minimum degree on ``A + A^T`` instead of the nested-dissection order, measured on the README
 load path's largest box (7497 unknowns): fill 1.04M against 1.07M, but 59-95 ms against 45-64 ms
@@ -256,7 +256,7 @@ class ElasticCondensation:
         return x + self._capacitance_solve(fixed_box, r)
 
     def _capacitance_solve(self, fixed_box: np.ndarray, bn: np.ndarray) -> np.ndarray:
-        """One solve of :meth:`_solve_free`'s decoupled system by the capacitance form."""
+        """One solve of ``_solve_free``'s decoupled system by the capacitance form."""
         lu, cols, _ = self._free
         F = np.flatnonzero(fixed_box)
         new = [i for i in F if i not in cols]
