@@ -99,11 +99,11 @@ def consistent_loads(r: np.ndarray, a: float, n: float, e0: int, e1: int) -> np.
     wq = np.where(inside, 0.5 * (rb - ra)[:, None] * _GW, 0.5 * _GW * 2.0 * (a - ra)[:, None] * s)
     p = np.clip(1.0 - (x / a) ** 2, 0.0, None) ** n * 2.0 * math.pi * x * wq
     t = (x - ra[:, None]) / (rb - ra)[:, None]
-    # Q2 shape functions of the nodes at t = 0, 1/2, 1
-    N = np.stack([2.0 * (t - 0.5) * (t - 1.0), -4.0 * t * (t - 1.0), 2.0 * t * (t - 0.5)])
+    # Q2 shape functions of the nodes at t = 0, 1/2, 1; for one j the nodes 2k + j are distinct
     F = np.zeros(len(r))
-    for j in range(3):
-        np.add.at(F, 2 * k + j, (N[j] * p).sum(axis=1))
+    F[2 * k] += (2.0 * (t - 0.5) * (t - 1.0) * p).sum(axis=1)
+    F[2 * k + 1] += (-4.0 * t * (t - 1.0) * p).sum(axis=1)
+    F[2 * k + 2] += (2.0 * t * (t - 0.5) * p).sum(axis=1)
     return F
 
 

@@ -126,20 +126,34 @@ class J2Plastic:
             x = np.where((xn > lo) & (xn < hi), xn, 0.5 * (lo + hi))
         raise ConvergenceError("J2 return mapping: the scalar Newton/bisection did not converge in 100 steps")
 
+    def _trial(self, strain: np.ndarray, eps_p: np.ndarray, ep: np.ndarray):
+        """Elastic trial state: volumetric strain, deviatoric stress, von Mises stress and the
+        points beyond the yield surface (``q_tr - Y > YIELD_TOL Y``: round-off on the surface stays
+        elastic)."""
+        e = strain - eps_p
+        tr = e[0] + e[1] + e[2]
+        ee = e.copy()
+        ee[3] = 0.5 * e[3]  # tensor shear component
+        s_tr = 2.0 * self.shear * deviator(ee)
+        q_tr = np.sqrt(1.5 * np.einsum("i,i...->...", _W, s_tr * s_tr))
+        Y0 = self.plasticity.flow_stress(ep)[0]
+        return tr, s_tr, q_tr, q_tr - Y0 > YIELD_TOL * Y0
+
+    def inelastic_points(self, strain: np.ndarray, state: State) -> np.ndarray:
+        """Points whose stress and tangent are not the elastic law's from zero strain: a plastic
+        strain in their history or a trial state beyond the yield surface (the same test as
+        :meth:`stress`). At the others ``sigma = D_el strain``, ``D = D_el`` and the state is
+        unchanged, so the assembly (:class:`~coathertz.fem.plastic.assembly.BBarAssembler`) can
+        leave them to the elastic stiffness."""
+        return self._trial(strain, state["eps_p"], state["ep"])[3] | np.any(state["eps_p"] != 0.0, axis=0)
+
     def stress(self, strain: np.ndarray, state: State) -> tuple[np.ndarray, np.ndarray, State]:
         """Return ``(sigma, D, new_state)`` for total strain ``strain[4, ...]`` (module docstring)."""
         shape = strain.shape[1:]
         eps_p = state["eps_p"] if state else np.zeros_like(strain)
         ep = state["ep"] if state else np.zeros(shape)
         K, G = self.bulk, self.shear
-        e = strain - eps_p
-        tr = e[0] + e[1] + e[2]
-        ee = e.copy()
-        ee[3] = 0.5 * e[3]  # tensor shear component
-        s_tr = 2.0 * G * deviator(ee)
-        q_tr = np.sqrt(1.5 * np.einsum("i,i...->...", _W, s_tr * s_tr))
-        Y0 = self.plasticity.flow_stress(ep)[0]
-        plastic = q_tr - Y0 > YIELD_TOL * Y0  # round-off on the yield surface stays elastic
+        tr, s_tr, q_tr, plastic = self._trial(strain, eps_p, ep)
         dgam = np.zeros(shape)
         if plastic.any():
             dgam[plastic] = self._solve_dgamma(q_tr[plastic], ep[plastic])

@@ -47,6 +47,28 @@ Box matrix gathered into a structure built once per box, and ``t`` not solved ag
 - delta/delta_c = 200 (E/Y = 1000, 20 steps): 43.1 -> 40.8 s CPU, 197 iterations, largest load
   364.433 N both.
 
+Newton-loop assembly restricted to the elements that may yield (``BBarAssembler.evaluate(...,
+stresses=False)``), the box's factors kept across the active-set changes of elastic unloading
+(``ElasticCondensation._solve_free``), the far field solved once per iteration (for the combined
+solution), no line search for a step already within the tolerance; the base commit's
+``fem/plastic`` (c87b1d2) and the new one run alternately in one shell (``coathertz.fem.__path__``
+pointed at a copy of each), 1 BLAS thread, the shared 2-core machine at load 5-10, CPU time:
+
+- README load path: 13.3 / 10.7 s (base, two runs) -> 8.2 / 7.4 s (new), 78 iterations both
+  (the same per increment), box factors reused 11 -> 39 times, far-field solves for ``t``
+  62 -> 20, final load 0 and residual depth 246.28 nm both; the whole CLI command
+  (``coathertz fem example:yielding_steel --plastic --unload --steps 10``, user CPU) 13.7 -> 8.0 s,
+  the same table (residual depth 0.24762 um);
+- delta/delta_c = 200 (E/Y = 1000, 20 steps): 39.9 -> 35.5 s, 197 iterations both, largest load
+  364.433 N both.
+
+Where the time goes now (CPU, instrumented run): README load path 8.3 s: box factorisations
+2.6 s (45), the rest of the condensed solves 1.8 s, assembly 1.45 s (103 calls), contact-radius
+fit 0.7 s, two condensations 0.6 s, the final stress report (``fem/post.py``) 0.6 s;
+delta/delta_c = 200 35.0 s: box factorisations 17.6 s (203, boxes up to 90 % of the mesh),
+assembly 8.7 s (275 calls, ~32 ms each: most of the fine zone yields, and every yielded element's
+stiffness is integrated again), six condensations 1.5 s, the fit 1.05 s.
+
 The targets (3 s, 30 s) are not reached: the box's factorisation (up to 12k unknowns), one or two solves
 with the far field's factor and the assembly (~40 ms) per iteration remain, at 4-10 iterations
 per increment.

@@ -37,6 +37,10 @@ def test_condensed_path_equals_whole_tangent_path(coated):
     ls = cond.meta["linear_solves"]
     assert ls["condensed"] > 0.8 * (ls["condensed"] + ls["full"]), ls
     assert ls["condensations"] >= 2, ls  # the box grew with the plastic zone
+    # elastic unloading keeps the tangent while the contact shrinks: those iterations reuse the
+    # box's factors (the free box and a capacitance on the active set), so the comparison below
+    # covers that solve too
+    assert ls["reused"] >= 4, ls
     # iteration counts are not a round-off invariant: where the active set changes within an
     # increment one path may chatter once more (measured: 15 against 8 iterations in one
     # increment of the coated path); the totals stay close
