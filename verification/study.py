@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, fields, is_dataclass
 from typing import Any
 
 from coathertz.case import ContactCase
@@ -175,6 +175,40 @@ class StudyResult:
         return [r for r in self.rows if self.reference.get(r["case"]) == r["method"]]
 
     def to_json(self) -> dict:
-        d = asdict(self)
+        """Every field as plain dicts and lists (as ``dataclasses.asdict`` makes them, a dataclass
+        nested anywhere turned into the dict of its fields), the claims with their verdicts.
+
+        The containers are new; their numbers, strings and arrays are this result's own (not the
+        deep copies ``asdict`` would make: the report only writes them out)."""
+        d = {f.name: _plain(getattr(self, f.name)) for f in fields(self)}
         d["claims"] = [{**asdict(c), "verdict": c.verdict} for c in self.claims]
         return d
+
+
+_ATOMS = frozenset({float, int, str, bool, type(None)})
+
+
+def _plain(obj: Any) -> Any:
+    """``dataclasses.asdict``'s conversion of a value, without copying what is not a container."""
+    t = type(obj)
+    if t in _ATOMS:
+        return obj
+    if t is dict:
+        return {(k if type(k) in _ATOMS else _plain(k)): (v if type(v) in _ATOMS else _plain(v))
+                for k, v in obj.items()}
+    if t is list:
+        return [v if type(v) in _ATOMS else _plain(v) for v in obj]
+    if is_dataclass(obj) and not isinstance(obj, type):
+        return {f.name: _plain(getattr(obj, f.name)) for f in fields(obj)}
+    if isinstance(obj, tuple) and hasattr(obj, "_fields"):  # a named tuple
+        return t(*[_plain(v) for v in obj])
+    if isinstance(obj, list | tuple):
+        return t(_plain(v) for v in obj)
+    if isinstance(obj, dict):  # a subclass: as asdict does
+        if hasattr(t, "default_factory"):
+            out = t(obj.default_factory)
+            for k, v in obj.items():
+                out[_plain(k)] = _plain(v)
+            return out
+        return t((_plain(k), _plain(v)) for k, v in obj.items())
+    return obj

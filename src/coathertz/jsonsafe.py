@@ -13,9 +13,34 @@ from typing import Any
 _SPECIAL = {"inf": math.inf, "-inf": -math.inf, "nan": math.nan}
 
 
+#: Values that :func:`to_jsonable` returns as they are (exact types; subclasses such as numpy's
+#: float64 take the general path).
+_KEPT = frozenset({str, int, bool, type(None)})
+_isfinite = math.isfinite
+
+
 def to_jsonable(obj: Any) -> Any:
     """``obj`` with non-finite floats as strings, numpy scalars and arrays as Python values,
     tuples and sets as lists and dict keys as strings."""
+    # the common case first, without a call per number or string (a run converts some 10^5
+    # values): plain dicts and lists of str, int, bool, None and finite floats
+    t = type(obj)
+    if t is float:
+        return obj if _isfinite(obj) else str(obj)
+    if t in _KEPT:
+        return obj
+    if t is dict:
+        return {(k if type(k) is str else str(k)):
+                (v if (tv := type(v)) in _KEPT or (tv is float and _isfinite(v)) else to_jsonable(v))
+                for k, v in obj.items()}
+    if t is list or t is tuple:
+        return [v if (tv := type(v)) in _KEPT or (tv is float and _isfinite(v)) else to_jsonable(v)
+                for v in obj]
+    return _to_jsonable(obj)
+
+
+def _to_jsonable(obj: Any) -> Any:
+    """:func:`to_jsonable` of anything (subclasses, sets, numpy values)."""
     if isinstance(obj, bool) or obj is None or isinstance(obj, int | str):
         return obj
     if isinstance(obj, float):
@@ -52,4 +77,6 @@ def loads(text: str | None) -> Any:
     """Parse JSON written by :func:`dumps` (``None`` stays ``None``)."""
     if text is None:
         return None
+    if '"inf"' not in text and '"-inf"' not in text and '"nan"' not in text:
+        return json.loads(text)  # no string that from_jsonable would turn into a float
     return from_jsonable(json.loads(text))

@@ -30,10 +30,12 @@ Integrity and exclusivity (:func:`open_run_store`, used by ``coathertz verify``)
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import datetime
 import hashlib
 import json
+import math
 import os
 import sqlite3
 import time
@@ -47,7 +49,6 @@ from coathertz.case import ContactCase
 from coathertz.errors import StoreError
 from coathertz.jsonsafe import dumps as _json_dumps
 from coathertz.jsonsafe import loads as _loads
-from coathertz.jsonsafe import to_jsonable
 from coathertz.materials import Body, Material
 
 SCHEMA = """
@@ -67,7 +68,8 @@ CREATE TABLE IF NOT EXISTS results (
 """
 
 def _num(x: float) -> Any:
-    return to_jsonable(float(x))
+    x = float(x)
+    return x if math.isfinite(x) else str(x)  # as to_jsonable writes it
 
 
 def _material_dict(m: Material) -> dict:
@@ -101,13 +103,39 @@ def _hash(obj: Any) -> str:
 
 
 def case_key(case: ContactCase) -> str:
-    """Hash of :func:`case_dict`: equal for cases that are physically the same."""
-    return _hash(case_dict(case))
+    """Hash of :func:`case_dict`: equal for cases that are physically the same.
+
+    Kept on the case (a frozen dataclass; like its cached properties): a run asks for the key of
+    each case a dozen times."""
+    try:
+        return case.__dict__[_CASE_KEY]
+    except (KeyError, AttributeError):
+        pass
+    key = _hash(case_dict(case))
+    with contextlib.suppress(AttributeError, TypeError):
+        case.__dict__[_CASE_KEY] = key
+    return key
+
+
+_CASE_KEY = "_store_case_key"
 
 
 def settings_key(settings: Mapping[str, Any]) -> str:
     """Hash of a method's settings."""
-    return _hash(dict(settings))
+    d = dict(settings)
+    if not all(type(v) in _ATOMS for v in d.values()):
+        return _hash(d)
+    memo = tuple((k, repr(v)) for k, v in d.items())  # the exact text of each value: 1, 1.0, -0.0
+    key = _SETTINGS_KEYS.get(memo)
+    if key is None:
+        if len(_SETTINGS_KEYS) > 4096:
+            _SETTINGS_KEYS.clear()
+        key = _SETTINGS_KEYS[memo] = _hash(d)
+    return key
+
+
+_ATOMS = frozenset({str, int, float, bool, type(None)})
+_SETTINGS_KEYS: dict[tuple[tuple[str, str], ...], str] = {}
 
 
 def _source_files(module: str) -> list[tuple[str, Path]]:
