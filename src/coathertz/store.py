@@ -107,17 +107,24 @@ def case_key(case: ContactCase) -> str:
 
     Kept on the case (a frozen dataclass; like its cached properties): a run asks for the key of
     each case a dozen times."""
+    return _kept(case, "_store_case_key", lambda: _hash(case_dict(case)))
+
+
+def _case_json(case: ContactCase) -> str:
+    """The stored JSON text of :func:`case_dict` (kept on the case like its key)."""
+    return _kept(case, "_store_case_json", lambda: _dumps(case_dict(case)))
+
+
+def _kept(case: ContactCase, name: str, make) -> str:
+    """``make()``, kept in the case's ``__dict__`` under ``name`` (where it has one)."""
     try:
-        return case.__dict__[_CASE_KEY]
+        return case.__dict__[name]
     except (KeyError, AttributeError):
         pass
-    key = _hash(case_dict(case))
+    value = make()
     with contextlib.suppress(AttributeError, TypeError):
-        case.__dict__[_CASE_KEY] = key
-    return key
-
-
-_CASE_KEY = "_store_case_key"
+        case.__dict__[name] = value
+    return value
 
 
 def settings_key(settings: Mapping[str, Any]) -> str:
@@ -328,7 +335,7 @@ class ResultStore:
         try:
             self._db.execute(
                 "INSERT OR REPLACE INTO results VALUES (?,?,?,?,?,?,?,?,?,?)",
-                (ck, m, sk, v, "ok" if error is None else "error", _dumps(case_dict(case)),
+                (ck, m, sk, v, "ok" if error is None else "error", _case_json(case),
                  _dumps(dict(settings)), None if result is None else _dumps(dict(result)), error,
                  time.time()),
             )
