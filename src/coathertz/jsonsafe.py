@@ -17,6 +17,8 @@ _SPECIAL = {"inf": math.inf, "-inf": -math.inf, "nan": math.nan}
 #: float64 take the general path).
 _KEPT = frozenset({str, int, bool, type(None)})
 _isfinite = math.isfinite
+#: Values that :func:`from_jsonable` returns as they are.
+_NUMBERS = frozenset({int, float, bool, type(None)})
 
 
 def to_jsonable(obj: Any) -> Any:
@@ -58,6 +60,13 @@ def _to_jsonable(obj: Any) -> Any:
 
 def from_jsonable(obj: Any) -> Any:
     """Inverse of :func:`to_jsonable` for numbers: ``"inf"``, ``"-inf"``, ``"nan"`` -> float."""
+    t = type(obj)  # what json.loads makes first, without a call per value
+    if t is dict:
+        return {k: (_SPECIAL.get(v, v) if (tv := type(v)) is str
+                    else v if tv in _NUMBERS else from_jsonable(v)) for k, v in obj.items()}
+    if t is list:
+        return [_SPECIAL.get(v, v) if (tv := type(v)) is str else v if tv in _NUMBERS else from_jsonable(v)
+                for v in obj]
     if isinstance(obj, str):
         return _SPECIAL.get(obj, obj)
     if isinstance(obj, dict):
