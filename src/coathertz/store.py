@@ -130,9 +130,9 @@ def _kept(case: ContactCase, name: str, make) -> str:
 def settings_key(settings: Mapping[str, Any]) -> str:
     """Hash of a method's settings."""
     d = dict(settings)
-    if not all(type(v) in _ATOMS for v in d.values()):
+    if not _ATOMS.issuperset(map(type, d.values())):
         return _hash(d)
-    memo = tuple((k, repr(v)) for k, v in d.items())  # the exact text of each value: 1, 1.0, -0.0
+    memo = (*d, *map(repr, d.values()))  # the exact text of each value: 1, 1.0, True, -0.0 apart
     key = _SETTINGS_KEYS.get(memo)
     if key is None:
         if len(_SETTINGS_KEYS) > 4096:
@@ -142,7 +142,7 @@ def settings_key(settings: Mapping[str, Any]) -> str:
 
 
 _ATOMS = frozenset({str, int, float, bool, type(None)})
-_SETTINGS_KEYS: dict[tuple[tuple[str, str], ...], str] = {}
+_SETTINGS_KEYS: dict[tuple[str, ...], str] = {}
 
 
 def _source_files(module: str) -> list[tuple[str, Path]]:

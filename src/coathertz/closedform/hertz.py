@@ -72,9 +72,10 @@ def _scalars_ok(W, R: ArrayLike, E_star) -> bool:
     """True if ``W``, ``R``, ``E_star`` are plain numbers that pass the checks of
     :func:`_check_positive_array` (then the scalar fast paths apply; anything else takes the
     array path, which also words the errors)."""
-    for x in (W, R, E_star):
-        if not isinstance(x, _SCALAR_TYPES) or isinstance(x, bool):
-            return False
+    if not (type(W) is float and type(R) is float and type(E_star) is float):  # the usual case
+        for x in (W, R, E_star):
+            if not isinstance(x, _SCALAR_TYPES) or isinstance(x, bool):
+                return False
     return 0.0 < W < math.inf and 0.0 < R < math.inf and 0.0 < E_star
 
 
