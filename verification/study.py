@@ -8,8 +8,9 @@ uncertainty into a verdict.
 
 from __future__ import annotations
 
+import functools
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import asdict, dataclass, field, fields, is_dataclass
 from typing import Any
 
@@ -18,7 +19,7 @@ from coathertz.errors import CoatHertzError
 from coathertz.methods import COSTS, RESOLUTIONS
 
 __all__ = ["CLOSED", "COSTS", "RESOLUTIONS", "VERDICTS", "Claim", "StudyCase", "StudyResult",
-           "check_resolution", "judge"]
+           "check_resolution", "fork_map", "judge"]
 
 #: The method the paper's claims are about: the closed form is judged, never a reference.
 CLOSED = "closed-form"
@@ -27,6 +28,31 @@ HOLDS, FAILS, INCONCLUSIVE = "holds", "does not hold", "inconclusive (within num
 NO_METHOD = "none"
 #: Every verdict a claim can have, in the order the report counts them.
 VERDICTS = (HOLDS, FAILS, INCONCLUSIVE, "observed", "n/a")
+
+
+def fork_map(fn: Callable[[Any], Any], jobs: Sequence[Any], workers: int) -> list:
+    """``fn(job)`` of each job, in order, a failed job giving its exception (not raised).
+
+    The independent solves of a study's ``analyse`` (its own FFT or FE searches): on up to
+    ``workers`` forked processes (the run's ``workers``; all of them finish with the call), in
+    this process where there is one worker, one job or no ``fork``. ``fn`` must be a module-level
+    function (it is pickled by name).
+    """
+    import multiprocessing
+
+    if workers <= 1 or len(jobs) <= 1 or "fork" not in multiprocessing.get_all_start_methods():
+        return [_call(fn, j) for j in jobs]
+    from concurrent.futures import ProcessPoolExecutor
+
+    with ProcessPoolExecutor(min(workers, len(jobs)), mp_context=multiprocessing.get_context("fork")) as ex:
+        return list(ex.map(functools.partial(_call, fn), jobs))
+
+
+def _call(fn: Callable[[Any], Any], job: Any) -> Any:
+    try:
+        return fn(job)
+    except Exception as exc:  # the caller reports it; one job must not sink the others
+        return exc
 
 
 def check_resolution(resolution: str) -> str:
