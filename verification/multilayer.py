@@ -45,6 +45,7 @@ from coathertz import verification as C
 from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError
 from coathertz.materials import Body, Layer, Material
+from coathertz.verification.study import fork_map
 
 NAME = "multilayer"
 TITLE = "Layer stacks: TiN over an interlayer (modulus ratio, thickness) on steel, rigid sphere"
@@ -266,6 +267,29 @@ def _axisym_method():
     return AxisymMethod(keep_fields=False)
 
 
+def _deepest(by_id: dict, order: list[str]) -> str | None:
+    """The case whose deepest interface :func:`analyse_interfaces` integrates (the first of the
+    stacks, else of all, with the largest depth), if every case's stresses are found."""
+    depth = {cid: float(np.cumsum([L.h for L in by_id[cid].case.body2.layers])[-1]) for cid in order
+             if by_id[cid].case.body2.layers}
+    stacks = [c for c in depth if c != "coating-only"] or list(depth)
+    return max(stacks, key=depth.__getitem__) if stacks else None
+
+
+def _interfaces_job(job: tuple) -> tuple | float:
+    """One case's interface stresses ``(rows, jump, interface_load or None)``; ``(None, _)``: the
+    frictionless check's shear."""
+    from coathertz.axisym.stresses import AxisymStresses
+
+    sc, with_load = job
+    m = _axisym_method()
+    if sc is None:
+        return shear_on_frictionless(m)
+    S = AxisymStresses(sc.case, m.solve(sc.case), cut=CUT)
+    rows, jump = interface_stresses(S)
+    return rows, jump, (interface_load(S) if with_load else None)
+
+
 def analyse_interfaces(result: C.StudyResult) -> None:
     """Interface stresses of every case the exact method solved (re-solved here: the rows keep
     scalars only; milliseconds each), the traction continuity and shear-free checks, and the
@@ -278,22 +302,31 @@ def analyse_interfaces(result: C.StudyResult) -> None:
     t0 = time.process_time()
     m = _axisym_method()
     by_id = {sc.id: sc for sc in cases(result.resolution)}
-    rows, jump, stresses = [], 0.0, {}
-    for cid in sorted(done, key=list(by_id).index):
+    order = sorted(done, key=list(by_id).index)
+    # every case's solve and stresses are independent (and the frictionless check's): side by
+    # side on the run's worker count; the equilibrium integral on the case expected to have the
+    # deepest interface (computed here after all if another one turns out to be it)
+    deep = _deepest(by_id, order)
+    found = fork_map(_interfaces_job, [(by_id[cid], cid == deep) for cid in order] + [(None, False)],
+                     result.workers)
+    tau = found.pop()
+    rows, jump, loads = [], 0.0, {}
+    for cid, o in zip(order, found, strict=True):
         sc = by_id[cid]
-        try:
-            S = AxisymStresses(sc.case, m.solve(sc.case), cut=CUT)
-            ir, j = interface_stresses(S)
-        except CoatHertzError as e:  # reported, not fatal: one case must not sink the study
+        if isinstance(o, CoatHertzError):  # reported, not fatal: one case must not sink the study
             result.failures.append({"case": cid, **sc.params, "method": "axisym-interfaces",
-                                    "error": str(e)})
+                                    "error": str(o)})
             continue
-        stresses[cid] = S
+        if isinstance(o, Exception):
+            raise o
+        ir, j, loads[cid] = o
         jump = max(jump, j)
         rows += [{"case": cid, **sc.params, **x} for x in ir]
     result.extra["interface_stresses"] = rows
     if not rows:
         return
+    if isinstance(tau, Exception):
+        raise tau
     n_itf = len(rows)
     result.claims.append(C.Claim(
         "multilayer-bonded-tractions-continuous",
@@ -301,7 +334,6 @@ def analyse_interfaces(result: C.StudyResult) -> None:
         "layers above and below, over p0 (exact method's stresses)", jump, f"< {ROUNDOFF_BOUND:g}",
         jump < ROUNDOFF_BOUND, "", 1e-12,
         f"{n_itf} interfaces, {SCAN_RHO[::SCAN_STEP].size} radii each", judged_against="axisym"))
-    tau = shear_on_frictionless(m)
     Ei, hi = FRICTIONLESS_CASE
     bonded = next(x["tau_max"] for x in rows if x.get("E_i") == Ei and x.get("h_i") == hi
                   and x["interface"] == 1) if any(
@@ -314,7 +346,10 @@ def analyse_interfaces(result: C.StudyResult) -> None:
         f"bonded, the same interface carries {bonded:.3f} p0", judged_against="axisym"))
     stacks = [x for x in rows if x["case"] != "coating-only"]
     eq_id = max(stacks or rows, key=lambda x: x["z"])["case"]
-    load, tail = interface_load(stresses[eq_id])
+    if loads.get(eq_id) is None:
+        sc = by_id[eq_id]
+        loads[eq_id] = interface_load(AxisymStresses(sc.case, m.solve(sc.case), cut=CUT))
+    load, tail = loads[eq_id]
     err = abs(load - 1.0)
     result.claims.append(C.Claim(
         "multilayer-interface-equilibrium",
@@ -332,7 +367,7 @@ def analyse_interfaces(result: C.StudyResult) -> None:
         f"{worst['name']} of {worst['case']} at r = {worst['r_tau']:.2f} a; largest sigma_zz / p0 "
         f"{tens['szz_max']:+.2e} ({tens['name']} of {tens['case']}, r = {tens['r_szz']:.2f} a)",
         judged_against=f"axisym, {len(done)} cases"))
-    result.extra["interface_cpu_s"] = time.process_time() - t0
+    result.extra["interface_cpu_s"] = time.process_time() - t0  # this process (not the forked solves)
 
 
 def plot(result: C.StudyResult, outdir) -> list:

@@ -58,6 +58,7 @@ from coathertz.case import ContactCase
 from coathertz.closedform.hertz import hertz_circular
 from coathertz.materials import RIGID, Body, Coating, Material
 from coathertz.stress_summary import first_principal, von_mises
+from coathertz.verification.study import fork_map
 
 NAME = "stresses"
 TITLE = "Stresses in coated bodies: first-yield load vs friction, cracking and interface-shear maps"
@@ -352,11 +353,13 @@ def analyse(result: C.StudyResult) -> None:
     W_ys_cf, a_ys = substrate_reference()
     scs = cases(res)
     solved: dict[str, dict] = {}
-    for sc in scs:
-        try:
-            solved[sc.id] = onset(sc, n, mu_values, W_ys_cf, LOADS[res])
-        except Exception as exc:  # reported, not fatal: one case must not sink the map
-            result.failures.append({"case": sc.id, **sc.params, "method": "fft-stresses", "error": repr(exc)})
+    # every case's onset search is independent: side by side on the run's worker count
+    found = fork_map(_onset_job, [(sc, n, mu_values, W_ys_cf, LOADS[res]) for sc in scs], result.workers)
+    for sc, o in zip(scs, found, strict=True):
+        if isinstance(o, Exception):  # reported, not fatal: one case must not sink the map
+            result.failures.append({"case": sc.id, **sc.params, "method": "fft-stresses", "error": repr(o)})
+        else:
+            solved[sc.id] = o
     # W_ys per geometry: the homogeneous body's first-yield load at mu = 0 on the same grid
     W_ys = {sc.params["ratio"]: solved[sc.id]["by_mu"][0.0]["W_y"] for sc in scs
             if sc.params["H"] == 0 and sc.id in solved}
@@ -391,19 +394,29 @@ def analyse(result: C.StudyResult) -> None:
             picks.setdefault(w["case"], set()).add(w["mu"])
     fine: dict[str, dict] = {}
     by_id = {sc.id: sc for sc in scs}
-    for cid, mset in picks.items():
-        try:
-            fine[cid] = refine_at(by_id[cid], n_fine, mu_values, sorted(mset), solved[cid])
-        except Exception as exc:
+    found = fork_map(_refine_job, [(by_id[cid], n_fine, mu_values, sorted(mset), solved[cid])
+                                   for cid, mset in picks.items()], result.workers)
+    for cid, o in zip(picks, found, strict=True):
+        if isinstance(o, Exception):
             result.failures.append({"case": cid, **by_id[cid].params, "method": "fft-stresses-refined",
-                                    "error": repr(exc)})
+                                    "error": repr(o)})
+        else:
+            fine[cid] = o
     result.extra["refined"] = {cid: {m: {k: v for k, v in o.items() if not isinstance(v, tuple | list)}
                                      for m, o in d["by_mu"].items()} for cid, d in fine.items()}
     _claims(result, solved, fine, rows, hom, von_mises_max_xz)
     result.methods = [*result.methods, "fft-stresses"]
     result.computed += len(solved) + len(fine)
     result.method_time["fft-stresses"] = time.perf_counter() - t0
-    result.extra["cpu_s"] = time.process_time() - c0
+    result.extra["cpu_s"] = time.process_time() - c0  # this process (not the forked searches)
+
+
+def _onset_job(job: tuple) -> dict:
+    return onset(*job)
+
+
+def _refine_job(job: tuple) -> dict:
+    return refine_at(*job)
 
 
 def _claims(result, solved, fine, rows, hom, vm_max_xz) -> None:

@@ -8,9 +8,10 @@ uncertainty into a verdict.
 
 from __future__ import annotations
 
+import functools
 import math
-from collections.abc import Mapping
-from dataclasses import asdict, dataclass, field
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import asdict, dataclass, field, fields, is_dataclass
 from typing import Any
 
 from coathertz.case import ContactCase
@@ -18,7 +19,7 @@ from coathertz.errors import CoatHertzError
 from coathertz.methods import COSTS, RESOLUTIONS
 
 __all__ = ["CLOSED", "COSTS", "RESOLUTIONS", "VERDICTS", "Claim", "StudyCase", "StudyResult",
-           "check_resolution", "judge"]
+           "check_resolution", "fork_map", "judge"]
 
 #: The method the paper's claims are about: the closed form is judged, never a reference.
 CLOSED = "closed-form"
@@ -27,6 +28,31 @@ HOLDS, FAILS, INCONCLUSIVE = "holds", "does not hold", "inconclusive (within num
 NO_METHOD = "none"
 #: Every verdict a claim can have, in the order the report counts them.
 VERDICTS = (HOLDS, FAILS, INCONCLUSIVE, "observed", "n/a")
+
+
+def fork_map(fn: Callable[[Any], Any], jobs: Sequence[Any], workers: int) -> list:
+    """``fn(job)`` of each job, in order, a failed job giving its exception (not raised).
+
+    The independent solves of a study's ``analyse`` (its own FFT or FE searches): on up to
+    ``workers`` forked processes (the run's ``workers``; all of them finish with the call), in
+    this process where there is one worker, one job or no ``fork``. ``fn`` must be a module-level
+    function (it is pickled by name).
+    """
+    import multiprocessing
+
+    if workers <= 1 or len(jobs) <= 1 or "fork" not in multiprocessing.get_all_start_methods():
+        return [_call(fn, j) for j in jobs]
+    from concurrent.futures import ProcessPoolExecutor
+
+    with ProcessPoolExecutor(min(workers, len(jobs)), mp_context=multiprocessing.get_context("fork")) as ex:
+        return list(ex.map(functools.partial(_call, fn), jobs))
+
+
+def _call(fn: Callable[[Any], Any], job: Any) -> Any:
+    try:
+        return fn(job)
+    except Exception as exc:  # the caller reports it; one job must not sink the others
+        return exc
 
 
 def check_resolution(resolution: str) -> str:
@@ -175,6 +201,40 @@ class StudyResult:
         return [r for r in self.rows if self.reference.get(r["case"]) == r["method"]]
 
     def to_json(self) -> dict:
-        d = asdict(self)
+        """Every field as plain dicts and lists (as ``dataclasses.asdict`` makes them, a dataclass
+        nested anywhere turned into the dict of its fields), the claims with their verdicts.
+
+        The containers are new; their numbers, strings and arrays are this result's own (not the
+        deep copies ``asdict`` would make: the report only writes them out)."""
+        d = {f.name: _plain(getattr(self, f.name)) for f in fields(self)}
         d["claims"] = [{**asdict(c), "verdict": c.verdict} for c in self.claims]
         return d
+
+
+_ATOMS = frozenset({float, int, str, bool, type(None)})
+
+
+def _plain(obj: Any) -> Any:
+    """``dataclasses.asdict``'s conversion of a value, without copying what is not a container."""
+    t = type(obj)
+    if t in _ATOMS:
+        return obj
+    if t is dict:
+        return {(k if type(k) in _ATOMS else _plain(k)): (v if type(v) in _ATOMS else _plain(v))
+                for k, v in obj.items()}
+    if t is list:
+        return [v if type(v) in _ATOMS else _plain(v) for v in obj]
+    if is_dataclass(obj) and not isinstance(obj, type):
+        return {f.name: _plain(getattr(obj, f.name)) for f in fields(obj)}
+    if isinstance(obj, tuple) and hasattr(obj, "_fields"):  # a named tuple
+        return t(*[_plain(v) for v in obj])
+    if isinstance(obj, list | tuple):
+        return t(_plain(v) for v in obj)
+    if isinstance(obj, dict):  # a subclass: as asdict does
+        if hasattr(t, "default_factory"):
+            out = t(obj.default_factory)
+            for k, v in obj.items():
+                out[_plain(k)] = _plain(v)
+            return out
+        return t((_plain(k), _plain(v)) for k, v in obj.items())
+    return obj

@@ -30,6 +30,7 @@ Yc/Ys = 1 and 3) at 12 elements across a (~25 s wall on the shared 2 cores, ~6 s
 
 from __future__ import annotations
 
+import contextlib
 import math
 import time
 import warnings
@@ -125,8 +126,15 @@ def analyse(result: C.StudyResult) -> None:
     hom_id = next((i for i in by_id if by_id[i].params["H"] == 0), None)
     # (the refined re-solve, the longest, first)
     jobs = ([(by_id[hom_id], refined)] if hom_id else []) + [(sc, settings) for sc in by_id.values()]
-    solved = solve_onsets(jobs, result.workers)
-    fine = {hom_id: solved.pop(0)} if hom_id else {}
+    with _search_pool(jobs, result.workers) as submit:
+        pending = [submit(j) for j in jobs]
+        fine_hom = pending.pop(0) if hom_id else None
+        solved = [f.result() for f in pending]
+        # the worst coated case's refined re-solve starts as soon as the map is known, beside the
+        # homogeneous case's (still running): not after it, alone, in this process
+        worst_fine = _worst_refined(by_id, solved, refined, W_ys, submit)
+        fine = {hom_id: fine_hom.result()} if hom_id else {}
+        worst_fine = worst_fine.result() if worst_fine is not None else None
     for sc, o in zip(by_id.values(), solved, strict=True):
         p = sc.params
         if isinstance(o, Exception):  # reported, not fatal: one case must not sink the map
@@ -168,7 +176,7 @@ def analyse(result: C.StudyResult) -> None:
     if coated:
         counts = {c: sum(r["where"] == c for r in coated) for c in CLASSES}
         worst = min(coated, key=lambda r: r["W_bar"])
-        u = mesh_uncertainty(by_id[worst["case"]], worst, refined, ("W_bar",))
+        u = mesh_uncertainty(by_id[worst["case"]], worst, refined, ("W_bar",), worst_fine)
         result.extra.setdefault("uncertainty", {})[worst["case"]] = u
         result.claims.append(C.Claim(
             "yield-onset-map", "coated cases: smallest W_y/W_ys (observation)", worst["W_bar"],
@@ -197,6 +205,40 @@ def mesh_uncertainty(sc: C.StudyCase, row: dict, refined: dict, keys: tuple[str,
     out: dict = {k: 2.0 * abs(fine[k] - row[k]) for k in keys}
     out["refined"] = fine
     return out
+
+
+def _worst_refined(by_id: dict, solved: list, refined: dict, W_ys: float, submit):
+    """Submit the refined re-solve of the coated case with the smallest ``W_y / W_ys`` (the one
+    the map's claim quotes, chosen as :func:`analyse` chooses it); None without such a case."""
+    coated = [(o.W_y / W_ys, sc) for sc, o in zip(by_id.values(), solved, strict=True)
+              if not isinstance(o, Exception) and sc.params["H"] > 0]
+    if not coated:
+        return None
+    return submit((min(coated, key=lambda t: t[0])[1], refined))
+
+
+class _Done:
+    """A search already done (in this process): the ``result()`` of a future."""
+
+    def __init__(self, value: Any) -> None:
+        self.value = value
+
+    def result(self) -> Any:
+        return self.value
+
+
+@contextlib.contextmanager
+def _search_pool(jobs: list, workers: int):
+    """``submit(job)`` -> future of :func:`_onset_or_error`: on up to ``workers`` forked processes
+    (all finish with the block), or at once in this process (one worker, one job, no ``fork``)."""
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+
+    if workers <= 1 or len(jobs) <= 1 or "fork" not in multiprocessing.get_all_start_methods():
+        yield lambda job: _Done(_onset_or_error(job))
+        return
+    with ProcessPoolExecutor(min(workers, len(jobs)), mp_context=multiprocessing.get_context("fork")) as ex:
+        yield lambda job: ex.submit(_onset_or_error, job)
 
 
 #: ``verify`` runs this study first: its onset searches (:func:`solve_onsets`) run in processes of

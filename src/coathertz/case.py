@@ -137,7 +137,7 @@ class ContactCase:
         return math.isclose(self.Rx, self.Ry, rel_tol=1e-12)
 
     # -- materials -------------------------------------------------------------------
-    @property
+    @cached_property
     def coated_bodies(self) -> tuple[Body, ...]:
         return tuple(b for b in (self.body1, self.body2) if b.is_coated)
 
@@ -215,7 +215,7 @@ class ContactCase:
     def delta0c(self) -> float:
         return float(self.hertz_c.delta0)
 
-    @property
+    @cached_property
     def normalisers(self) -> Normalisers:
         """The paper's normalisers: ``c`` values for a rigid substrate, else ``s`` (eq 7)."""
         h = self.hertz_c if self.rigid_substrate else self.hertz_s

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field
+from dataclasses import fields as dc_fields
 from typing import Any
 
 import numpy as np
@@ -55,7 +56,8 @@ class ContactResult:
 
     def scalars(self) -> dict[str, Any]:
         """JSON-ready dict of everything but ``fields``."""
-        d = asdict(self)
-        d.pop("fields")
+        # the fields directly (numbers and strings): ``asdict`` would deep-copy ``fields`` (the
+        # arrays) only to drop them, and ``meta`` only to replace it by a shallow copy
+        d = {f.name: getattr(self, f.name) for f in dc_fields(self) if f.name != "fields"}
         d["meta"] = dict(self.meta)
         return d

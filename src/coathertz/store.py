@@ -30,10 +30,12 @@ Integrity and exclusivity (:func:`open_run_store`, used by ``coathertz verify``)
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import datetime
 import hashlib
 import json
+import math
 import os
 import sqlite3
 import time
@@ -47,7 +49,6 @@ from coathertz.case import ContactCase
 from coathertz.errors import StoreError
 from coathertz.jsonsafe import dumps as _json_dumps
 from coathertz.jsonsafe import loads as _loads
-from coathertz.jsonsafe import to_jsonable
 from coathertz.materials import Body, Material
 
 SCHEMA = """
@@ -67,7 +68,8 @@ CREATE TABLE IF NOT EXISTS results (
 """
 
 def _num(x: float) -> Any:
-    return to_jsonable(float(x))
+    x = float(x)
+    return x if math.isfinite(x) else str(x)  # as to_jsonable writes it
 
 
 def _material_dict(m: Material) -> dict:
@@ -101,13 +103,46 @@ def _hash(obj: Any) -> str:
 
 
 def case_key(case: ContactCase) -> str:
-    """Hash of :func:`case_dict`: equal for cases that are physically the same."""
-    return _hash(case_dict(case))
+    """Hash of :func:`case_dict`: equal for cases that are physically the same.
+
+    Kept on the case (a frozen dataclass; like its cached properties): a run asks for the key of
+    each case a dozen times."""
+    return _kept(case, "_store_case_key", lambda: _hash(case_dict(case)))
+
+
+def _case_json(case: ContactCase) -> str:
+    """The stored JSON text of :func:`case_dict` (kept on the case like its key)."""
+    return _kept(case, "_store_case_json", lambda: _dumps(case_dict(case)))
+
+
+def _kept(case: ContactCase, name: str, make) -> str:
+    """``make()``, kept in the case's ``__dict__`` under ``name`` (where it has one)."""
+    try:
+        return case.__dict__[name]
+    except (KeyError, AttributeError):
+        pass
+    value = make()
+    with contextlib.suppress(AttributeError, TypeError):
+        case.__dict__[name] = value
+    return value
 
 
 def settings_key(settings: Mapping[str, Any]) -> str:
     """Hash of a method's settings."""
-    return _hash(dict(settings))
+    d = dict(settings)
+    if not _ATOMS.issuperset(map(type, d.values())):
+        return _hash(d)
+    memo = (*d, *map(repr, d.values()))  # the exact text of each value: 1, 1.0, True, -0.0 apart
+    key = _SETTINGS_KEYS.get(memo)
+    if key is None:
+        if len(_SETTINGS_KEYS) > 4096:
+            _SETTINGS_KEYS.clear()
+        key = _SETTINGS_KEYS[memo] = _hash(d)
+    return key
+
+
+_ATOMS = frozenset({str, int, float, bool, type(None)})
+_SETTINGS_KEYS: dict[tuple[str, ...], str] = {}
 
 
 def _source_files(module: str) -> list[tuple[str, Path]]:
@@ -300,7 +335,7 @@ class ResultStore:
         try:
             self._db.execute(
                 "INSERT OR REPLACE INTO results VALUES (?,?,?,?,?,?,?,?,?,?)",
-                (ck, m, sk, v, "ok" if error is None else "error", _dumps(case_dict(case)),
+                (ck, m, sk, v, "ok" if error is None else "error", _case_json(case),
                  _dumps(dict(settings)), None if result is None else _dumps(dict(result)), error,
                  time.time()),
             )

@@ -88,3 +88,20 @@ def test_alpha_positive_and_held_outside_fitted_range():
                 assert np.all(rule.alpha(q, E, H) > 0), (rule.name, q, E)
     assert alpha_a_3(10.0) == alpha_a_3(3.0)
     assert PAPER_RULE.alpha("p", 10.0, 1.0) == PAPER_RULE.alpha("p", 4.0, 1.0)
+
+
+def test_one_H_gives_the_numbers_of_the_vectorised_curves():
+    """A single H takes a short path (studies ask for one case at a time); every curve and rule
+    gives exactly the vectorised values, at and next to the breakpoints and outside the range."""
+    from coathertz.closedform import alpha as A
+
+    rng = np.random.default_rng(1)
+    bps = sorted({b for v in A.BREAKPOINTS.values() for b in v})
+    Hs = np.concatenate([10 ** rng.uniform(-3, 1, 300), bps, [b * (1 + 1e-12) for b in bps],
+                         [1e-5, 0.01, 3.0, 10.0]])
+    for f in A.CURVES.values():
+        assert [f(float(h)).item() for h in Hs] == f(Hs).tolist()
+    for rule in (A.PAPER_RULE, A.EQ21_RULE, A.ELLIPTICAL_RULE):
+        for q in ("a", "b", "delta", "p"):
+            for E in (0.1, 1 / 3, 0.5, 1.0, 2.0, 4.0, 5.0):
+                assert [float(rule.alpha(q, E, float(h))) for h in Hs] == rule.alpha(q, E, Hs).tolist()

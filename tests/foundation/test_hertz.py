@@ -113,3 +113,25 @@ def test_axis_stresses_johnson_345():
 def test_bad_load_is_rejected(bad):
     with pytest.raises(CoatHertzError, match="W must satisfy"):
         hertz_circular(bad, 0.01, 1e9)
+
+
+def test_scalar_fast_path_gives_the_array_path_bits():
+    """One case (plain floats) takes a memoised fast path; 0-d arrays take the vectorised one:
+    the same operations, hence the same numbers to the last bit (the report's numbers must not
+    move), including a rigid pair (E* = inf), huge and tiny loads and very elongated contacts."""
+    rng = np.random.default_rng(7)
+    inputs = [(1.0, 0.01, 0.01, math.inf), (1e-9, 1e3, 1e-6, 1e15), (1e9, 1e-3, 1e-3, 1.0)]
+    inputs += [tuple(float(v) for v in (10 ** rng.uniform(-3, 4), 10 ** rng.uniform(-4, 0),
+                                         10 ** rng.uniform(-4, 0), 10 ** rng.uniform(8, 12)))
+               for _ in range(200)]
+    for W, Rx, Ry, E in inputs:
+        fast = hertz_elliptical(W, Rx, Ry, E)
+        slow = hertz_elliptical(*(np.asarray(v) for v in (W, Rx, Ry, E)))
+        assert all(type(v) is float for v in vars(fast).values())
+        assert vars(fast) == vars(slow), (W, Rx, Ry, E)
+        R = math.sqrt(Rx * Ry)
+        assert vars(hertz_circular(W, R, E)) == vars(hertz_circular(*(np.asarray(v) for v in (W, R, E))))
+    with pytest.raises(CoatHertzError, match="E_star must satisfy"):
+        hertz_elliptical(1.0, 0.01, 0.01, -1.0)  # bad scalars still worded by the array path
+    with pytest.raises(CoatHertzError, match="Rx must satisfy"):
+        hertz_elliptical(1.0, math.inf, 0.01, 1e9)

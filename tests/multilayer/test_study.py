@@ -40,3 +40,24 @@ def test_tiny_multilayer_study(tmp_path):
     paths = mod.plot(r, tmp_path)
     assert [p.name for p in paths] == ["multilayer.png", "multilayer_interfaces.png"]
     assert all(p.stat().st_size > 5000 for p in paths)
+
+
+def test_interface_stresses_forked_give_the_same_numbers():
+    """With two workers each case's interface stresses (and the frictionless check) are computed
+    in forked processes: every number is the one computed in this process."""
+    import json
+
+    from coathertz.jsonsafe import to_jsonable
+    from coathertz.verification import StudyResult
+
+    mod = get_study("multilayer")
+    out = []
+    for workers in (1, 2):
+        r = StudyResult(mod.NAME, mod.TITLE, mod.CLAIM, "tiny", workers=workers)
+        r.rows = [{"case": sc.id, "method": "axisym"} for sc in mod.cases("tiny")]
+        mod.analyse_interfaces(r)
+        assert not r.failures and r.extra["interface_stresses"], r.failures
+        extra = {k: v for k, v in r.extra.items() if k != "interface_cpu_s"}
+        out.append(json.dumps(to_jsonable([r.to_json()["claims"], extra]), sort_keys=True))
+    assert out[0] == out[1]
+    assert "multilayer-interface-equilibrium" in out[0]

@@ -26,6 +26,25 @@ def test_settings_key_and_code_version():
     assert v.startswith("0.") or "+" in v
 
 
+def test_memoised_keys_are_the_hashes_they_stand_for():
+    """The case key is kept on the case and the settings key memoised by the exact text of each
+    value: the same hashes as computed afresh, and 1, 1.0, True, -0.0, 0.0 stay apart."""
+    import pickle
+
+    from coathertz.store import _hash, case_dict
+
+    c = cases(2)[1]
+    first = case_key(c)
+    assert case_key(c) == first == _hash(case_dict(c))
+    assert case_key(pickle.loads(pickle.dumps(c))) == first  # a worker's copy: the same key
+    assert case_key(c.replace(W=2 * c.W)) == _hash(case_dict(c.replace(W=2 * c.W))) != first
+    values = [1, 1.0, True, -0.0, 0.0, None, "1", math.inf]
+    keys = [settings_key({"x": v, "n": 64}) for v in values for _ in range(2)]
+    assert keys == [_hash({"x": v, "n": 64}) for v in values for _ in range(2)]
+    assert len(set(keys)) == len(values)
+    assert settings_key({"x": [1, 2]}) == _hash({"x": [1, 2]})  # not memoised, the same hash
+
+
 def test_round_trip_error_and_version(tmp_path):
     m = FakeMethod()
     c = cases(3)

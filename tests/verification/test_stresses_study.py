@@ -82,3 +82,22 @@ def test_figures(tiny, tmp_path):
     assert {p.name for p in paths} == {"stresses_onset_vs_mu.png", "stresses_maps.png", "stresses_slice.png"}
     for p in paths:
         assert p.stat().st_size > 5000, p
+
+
+def test_forked_searches_give_the_same_numbers(tiny):
+    """With the run's two workers the onset searches and refined re-solves run in forked
+    processes: every number is the one computed in this process."""
+    import json
+
+    from coathertz.jsonsafe import to_jsonable
+
+    S, r1 = tiny
+    r2 = StudyResult(S.NAME, S.TITLE, S.CLAIM, "tiny", workers=2)
+    S.analyse(r2)
+    assert not r2.failures, r2.failures
+
+    def numbers(r):
+        extra = {k: v for k, v in r.extra.items() if k != "cpu_s"}
+        return json.dumps(to_jsonable([r.to_json()["claims"], extra]), sort_keys=True, default=repr)
+
+    assert numbers(r2) == numbers(r1)

@@ -54,3 +54,23 @@ def test_uncertainty_covers_the_error_against_the_hertz_axis_values(tiny):
     assert claims["yield-onset-homogeneous-p0"].uncertainty < 0.2
     assert claims["yield-onset-homogeneous-z"].uncertainty < 3.0
     assert claims["yield-onset-homogeneous-p0"].verdict == HOLDS
+
+
+def test_forked_searches_give_the_same_numbers(tiny):
+    """With two workers the map, the homogeneous refined re-solve and (as soon as the map is
+    known) the worst coated case's refined re-solve run in forked processes: every number is
+    the one computed in this process."""
+    import json
+
+    from coathertz.jsonsafe import to_jsonable
+
+    S, r1 = tiny
+    r2 = C.StudyResult(S.NAME, S.TITLE, S.CLAIM, "tiny", workers=2)
+    S.analyse(r2)
+    assert not r2.failures, r2.failures
+
+    def numbers(r):
+        return json.dumps(to_jsonable([r.to_json()["claims"], r.extra]), sort_keys=True, default=repr)
+
+    assert numbers(r2) == numbers(r1)
+    assert "uncertainty" in r2.extra and len(r2.extra["uncertainty"]) == len(r1.extra["uncertainty"])

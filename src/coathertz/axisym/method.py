@@ -7,7 +7,7 @@ import math
 import time
 import warnings
 from collections.abc import Mapping, Sequence
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass, fields
 from typing import Any, ClassVar
 
 import numpy as np
@@ -172,10 +172,10 @@ class AxisymMethod:
 
     # Method protocol ---------------------------------------------------------------------------
     def settings(self) -> Mapping[str, Any]:
-        d = asdict(self)
-        for k in ("name", "keep_fields"):
-            d.pop(k)
-        return d
+        # the fields' values directly (all plain numbers and strings): ``asdict`` deep-copies
+        # each one, and a run asks for the settings of each result several times
+        skip = ("name", "keep_fields")
+        return {f.name: getattr(self, f.name) for f in fields(self) if f.name not in skip}
 
     def supports(self, case: ContactCase) -> bool:
         """Circular point contacts (``Rx = Ry`` finite): the problem is axisymmetric."""

@@ -22,6 +22,7 @@ which eq (17) cannot take. The callers in :mod:`coathertz.closedform.extended` i
 
 from __future__ import annotations
 
+import bisect
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
@@ -40,6 +41,9 @@ def _piecewise(H: np.ndarray, breaks: Sequence[float], funcs: Sequence[Callable]
     """Evaluate pieces: funcs[0] on H <= breaks[0], funcs[k] on breaks[k-1] < H <= breaks[k];
     H is clipped to the fitted range first (alpha held at its end values)."""
     H = np.asarray(H, dtype=float)
+    if H.ndim == 0 and H > 0:  # one H (a case of a study): its piece alone, the same numbers
+        h = min(max(float(H), H_RANGE[0]), H_RANGE[1])  # np.clip
+        return np.array(funcs[bisect.bisect_left(breaks, h)](np.array([h]))[0])
     if np.any(~(H > 0)):
         raise CoatHertzError(f"H must be > 0 to evaluate the alpha curves, got min {np.min(H)!r}")
     H = np.clip(H, *H_RANGE)

@@ -21,6 +21,7 @@ elliptical contact, ``r_a = r_a0(E*_a)``, ``r_b = r_b0(E*_b)``.
 
 from __future__ import annotations
 
+import functools
 import math
 import warnings
 from dataclasses import dataclass, field
@@ -154,15 +155,39 @@ def _body_alpha(case: ContactCase, body: Body, q: str, rule: AlphaRule, H: float
     if hasattr(rule, "body_alpha"):  # a rule that needs the whole body (coathertz.closedform.refit)
         return float(rule.body_alpha(body, q, H))
     if body.material.is_rigid:
-        return float(alpha_rigid(q, H))
-    return float(rule.alpha(q, body.modulus_ratio, H))
+        return _alpha_rigid_of(q, float(H))
+    E = float(body.modulus_ratio)
+    try:
+        return _alpha_of(rule, q, E, float(H))
+    except TypeError:  # a rule that cannot be hashed: not memoised
+        return float(rule.alpha(q, E, H))
+
+
+# alpha, E1* of one (rule, quantity, E, H): pure functions of their arguments, asked for again
+# and again by the studies (the same H and E recur across cases, quantities and figures);
+# memoised, the numbers unchanged
+
+
+@functools.lru_cache(maxsize=1 << 16)
+def _alpha_of(rule: AlphaRule, q: str, E: float, H: float) -> float:
+    return float(rule.alpha(q, E, H))
+
+
+@functools.lru_cache(maxsize=1 << 14)
+def _alpha_rigid_of(q: str, H: float) -> float:
+    return float(alpha_rigid(q, H))
+
+
+@functools.lru_cache(maxsize=1 << 16)
+def _E1_of(Ec_star: float, lam: float, kappa: float, alpha: float, H: float) -> float:
+    return float(E1_star(Ec_star, lam, kappa, alpha, H))
 
 
 def _body_compliance(body: Body, q: str, alpha: float, H: float) -> tuple[float, float]:
     """(1/E1*_q, E1*_q) of one coated body, eq (17)."""
     c = body.coating
     k = coating_constants(c.material, body.material)
-    e1 = float(E1_star(c.material.E_star, k.lam, k.kappa, alpha, H))
+    e1 = _E1_of(float(c.material.E_star), float(k.lam), float(k.kappa), float(alpha), float(H))
     return (0.0 if math.isinf(e1) else 1.0 / e1), e1
 
 

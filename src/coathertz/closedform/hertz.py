@@ -65,6 +65,39 @@ def _out(x: np.ndarray) -> ArrayLike:
     return float(x) if np.ndim(x) == 0 else x
 
 
+_SCALAR_TYPES = (float, int, np.floating, np.integer)
+
+
+def _scalars_ok(W, R: ArrayLike, E_star) -> bool:
+    """True if ``W``, ``R``, ``E_star`` are plain numbers that pass the checks of
+    :func:`_check_positive_array` (then the scalar fast paths apply; anything else takes the
+    array path, which also words the errors)."""
+    if not (type(W) is float and type(R) is float and type(E_star) is float):  # the usual case
+        for x in (W, R, E_star):
+            if not isinstance(x, _SCALAR_TYPES) or isinstance(x, bool):
+                return False
+    return 0.0 < W < math.inf and 0.0 < R < math.inf and 0.0 < E_star
+
+
+def _circular_scalar(W, R, E_star) -> tuple[float, float, float] | None:
+    """Eqs (1a)-(1c) for one case, ``(a0, delta0, p0)``, or ``None`` to take the array path.
+
+    The same operations as the array path (``x**2`` of an array is ``x * x`` in numpy, and the
+    cube roots are numpy's), so the numbers are the same to the last bit, at a fraction of
+    the cost (the studies call this a few thousand times per run).
+    """
+    if not _scalars_ok(W, R, E_star):
+        return None
+    W, R, E_star = float(W), float(R), float(E_star)
+    try:
+        a0 = 3.0 * W * R / (4.0 * E_star)  # eq (1a)
+        delta0 = 9.0 * (W * W) / (16.0 * R * (E_star * E_star))  # eq (1b)
+        p0 = 6.0 * W * (E_star * E_star) / (math.pi**3 * (R * R))  # eq (1c)
+    except ZeroDivisionError:  # an underflowed denominator: the array path gives inf
+        return None
+    return float(np.cbrt(a0)), float(np.cbrt(delta0)), float(np.cbrt(p0))
+
+
 def combined_modulus(*compliances: float) -> float:
     """E* of eq (2) from the bodies' compliances (1 - nu_i^2)/E_i (0 for a rigid body)."""
     total = math.fsum(compliances)
@@ -85,6 +118,9 @@ def hertz_circular(W: ArrayLike, R: ArrayLike, E_star: ArrayLike) -> HertzCircul
     E_star
         Equivalent modulus [Pa] of eq (2) (``inf`` for two rigid bodies).
     """
+    fast = _circular_scalar(W, R, E_star)
+    if fast is not None:
+        return HertzCircular(*fast)
     W = _check_positive_array("W", W)
     R = _check_positive_array("R", R)
     E_star = _check_positive_array("E_star", E_star, allow_inf=True)
@@ -198,6 +234,16 @@ def hertz_elliptical(W: ArrayLike, Rx: ArrayLike, Ry: ArrayLike, E_star: ArrayLi
     ``Rx`` and ``Ry`` are the principal relative radii; if ``Rx < Ry`` they are swapped
     so that ``r_a0`` is always the major semi-axis (oriented along the larger radius).
     """
+    if _scalars_ok(W, 1.0, E_star) and _scalars_ok(Rx, Ry, 1.0) and Rx < math.inf:
+        # one case (the studies call this thousands of times): the shape factors of these
+        # radii memoised, the load part as in hertz_circular; the same numbers as below
+        zeta, F0, F1, F2, R = _shape(float(max(Rx, Ry)), float(min(Rx, Ry)))
+        c = _circular_scalar(W, R, E_star)
+        if c is not None:
+            a0c, delta0c, p0c = c
+            r_a0 = F0 * a0c  # eq (5a)
+            return HertzElliptical(r_a0, r_a0 * zeta, F1 * a0c, F2 * delta0c, p0c / (F1 * F1),
+                                   zeta, F0, F1, F2)
     Rx = _check_positive_array("Rx", Rx)
     Ry = _check_positive_array("Ry", Ry)
     Rmaj, Rmin = np.maximum(Rx, Ry), np.minimum(Rx, Ry)
@@ -211,6 +257,16 @@ def hertz_elliptical(W: ArrayLike, Rx: ArrayLike, Ry: ArrayLike, E_star: ArrayLi
     delta0 = F2 * np.asarray(c.delta0)  # eq (5c)
     p0 = np.asarray(c.p0) / np.asarray(F1) ** 2  # eq (5d)
     return HertzElliptical(*(_out(np.asarray(v)) for v in (r_a0, r_b0, a0, delta0, p0, zeta, F0, F1, F2)))
+
+
+@functools.lru_cache(maxsize=4096)
+def _shape(Rmaj: float, Rmin: float) -> tuple[float, float, float, float, float]:
+    """``(zeta, F0, F1, F2, R)`` of the relative radii ``Rmaj >= Rmin``, eqs (4), (6), as
+    :func:`hertz_elliptical`'s array path computes them (memoised: few geometries recur)."""
+    zeta = np.asarray(solve_zeta(np.float64(Rmaj) / np.float64(Rmin)))
+    F0, F1, F2 = elliptic_factors(zeta)
+    R = np.sqrt(np.float64(Rmaj) * np.float64(Rmin))
+    return float(zeta), float(F0), float(F1), float(F2), float(R)
 
 
 def hertz_axis_stresses(z: ArrayLike, a0: float, p0: float, nu: float) -> tuple[np.ndarray, np.ndarray]:

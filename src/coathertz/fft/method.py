@@ -30,7 +30,7 @@ import time
 import warnings
 from collections import OrderedDict
 from collections.abc import Mapping, Sequence
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass, fields
 from typing import Any, ClassVar
 
 import numpy as np
@@ -313,10 +313,10 @@ class FFTMethod:
 
     # Method protocol ------------------------------------------------------------------
     def settings(self) -> Mapping[str, Any]:
-        d = asdict(self)
-        for k in ("name", "backend", "workers", "keep_fields", "max_memory_gb"):
-            d.pop(k)
-        return d
+        # the fields' values directly (all plain numbers and strings): ``asdict`` deep-copies
+        # each one, and a run asks for the settings of each result several times
+        skip = ("name", "backend", "workers", "keep_fields", "max_memory_gb")
+        return {f.name: getattr(self, f.name) for f in fields(self) if f.name not in skip}
 
     def supports(self, case: ContactCase) -> bool:
         """Any point contact: finite relative radii (a non-conforming contact)."""
