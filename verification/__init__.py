@@ -20,8 +20,9 @@ A study is a public module of this package that defines
 Optional: ``QUANTITIES``, ``VARIANTS`` (study-specific method variants: name -> (registered
 method, extra settings)), ``PREDICTED`` (default ``closed-form``), ``GENERIC_FIGURES = False``,
 ``RUN_EARLY = True`` (``verify`` runs it before the others, the report keeps the paper's order:
-for a study whose ``analyse`` solves, in this process or in processes of its own, so that the
-workers solve the next studies' cases meanwhile instead of idling at the end of the run).
+for a study that keeps this process or processes of its own busy for long, solving in
+``analyse`` or refining its references, so that the workers solve the next studies' cases
+meanwhile, and the run does not end on it with idle workers).
 
 :func:`studies` discovers the modules with ``pkgutil``, so adding a module adds a study.
 This package's namespace is the public API the studies, the report and the CLI use.

@@ -48,6 +48,9 @@ from coathertz.materials import Body, Layer, Material
 from coathertz.verification.study import fork_map
 
 NAME = "multilayer"
+#: ``verify`` runs this study early: its interface stresses are computed in ``analyse`` (in
+#: processes of its own) while the workers solve the next studies' cases.
+RUN_EARLY = True
 TITLE = "Layer stacks: TiN over an interlayer (modulus ratio, thickness) on steel, rigid sphere"
 CLAIM = ("Extension: an interlayer of the substrate's material adds nothing; the "
          "interlayer's modulus and thickness against delta, a, p0 (exact method, FFT and FE) "

@@ -27,6 +27,7 @@ lock, so a killed run never leaves a store locked or open.
 from __future__ import annotations
 
 import functools
+import itertools
 import multiprocessing
 import os
 import signal
@@ -456,9 +457,10 @@ _POOL: tuple[ProcessPoolExecutor, int] | None = None
 #: FE case, about a second): enough to keep every worker busy between two results.
 AHEAD_PER_WORKER = 3
 #: Chunks started ahead per worker at most, finished ones that no call has adopted yet included:
-#: what the workers may solve while this process analyses and draws (half a minute of work and
-#: more); an interrupted run stores the finished ones (``_Ahead.salvage``).
-AHEAD_HELD_PER_WORKER = 32
+#: what the workers may solve while this process analyses and draws (a minute of work and more;
+#: the results held are a few kB a case); an interrupted run stores the finished ones
+#: (``_Ahead.salvage``).
+AHEAD_HELD_PER_WORKER = 100
 #: Seconds between two checks of the feeder thread when no chunk has finished.
 FEED_INTERVAL = 0.25
 
@@ -499,14 +501,18 @@ class _Ahead:
              chunk_size: int | None) -> None:
         """Queue the tasks of ``ahead()`` that are neither this call's (``own``), nor stored, nor
         already ahead, nor run in this process (``inline`` methods). ``ahead()`` gives tasks, or
-        groups of tasks (one per later call), each chunked on its own, in order."""
+        groups of tasks (one per later call; may be a generator), each chunked on its own and
+        queued as soon as it is planned (the feeder starts it while the next group is planned)."""
         with self._lock:
             held = [*self.queued, *self.running.values()]
         taken = set(own) | {Task(c, m).key for m, cs in held for c in cs}
-        items = list(ahead())
-        groups = [items] if not items or isinstance(items[0], Task) else items
-        chunks = []
+        items = iter(ahead())
+        first = next(items, None)
+        if first is None:
+            return
+        groups = [[first, *items]] if isinstance(first, Task) else itertools.chain([first], items)
         for group in groups:  # chunked group by group (a study's cases with each other)
+            chunks = []
             todo: dict[tuple, Task] = {}
             for t in group:
                 if t.key not in taken and not getattr(t.method, "inline", False):
@@ -519,9 +525,9 @@ class _Ahead:
                 m = ts[0].method
                 found = store.get_many([t.case for t in ts], m.name, m.settings())
                 chunks += _chunks([t for t in ts if t.key[0] not in found], chunk_size)
-        with self._lock:
-            self.queued += chunks
-        self._wake.set()
+            with self._lock:
+                self.queued += chunks
+            self._wake.set()
 
     def top_up(self, ex: ProcessPoolExecutor, workers: int) -> None:
         """Submit queued chunks while fewer than ``AHEAD_PER_WORKER * workers`` run and fewer

@@ -108,7 +108,12 @@ def test_next_call_runs_ahead_and_is_adopted_once(tmp_path):
                                              for c in ch} <= {f"c{i}" for i in range(10, 16)}
     assert not ahead.running and not ahead.queued  # dropped with the pool
     solved = [line.split()[0] for line in _log(log)]
-    assert len(set(solved[:9])) == 9 and set(solved[:9]) == {f"c{i}" for i in range(9)}
+    # each case at most once (c9 was stored; the third call's cases, started ahead, are dropped
+    # unfinished or not with the block)
+    assert len(solved) == len(set(solved))
+    # the second call's own cases start before the third's, but for the race of two workers
+    # taking the last of them and the first of the next at the same moment (one place of slack)
+    assert set(solved[:10]) >= {f"c{i}" for i in range(9)}, solved
     for t in first + second:
         if t.case.label != "c9":
             assert out1.get(t.case, "fake") or out2.get(t.case, "fake")

@@ -15,10 +15,6 @@ HELP = "run the paper's studies (closed form, FFT, FE) and write the verificatio
 #: What to lower when the command runs out of memory (named in the error).
 MEMORY_HINT = "a lower resolution (--tiny, --quick)"
 
-#: Studies ahead of the one running whose cases the workers may start (while this process
-#: analyses and draws the running one's): enough to keep 2 workers busy through the longest
-#: analysis of the quick run (about 6 s).
-AHEAD_STUDIES = 4
 #: dask.distributed protocols a scheduler of another process can be reached by.
 SCHEDULER_PROTOCOLS = ("tcp", "tls", "ws", "wss", "ucx")
 
@@ -173,13 +169,13 @@ def run(args: argparse.Namespace) -> int:
             order = sorted(mods, key=lambda m: not getattr(m, "RUN_EARLY", False))
             planned = 1  # the studies of ``order`` whose cases were handed to the runner ahead
 
-            def ahead(i: int) -> list:
-                # the cases of the next AHEAD_STUDIES studies not handed over yet: the workers
-                # solve them while this process analyses and draws (each study planned once)
+            def ahead(i: int):
+                # the cases of every later study not handed over yet, study by study (the first
+                # call hands over all of them): the workers solve them while this process
+                # analyses and draws, however long that takes
                 nonlocal planned
-                todo = order[max(planned, i + 1):i + 1 + AHEAD_STUDIES]
-                planned = max(planned, i + 1 + AHEAD_STUDIES)
-                return [study_tasks(m, args.resolution, methods) for m in todo]
+                todo, planned = order[max(planned, i + 1):], len(order)
+                return (study_tasks(m, args.resolution, methods) for m in todo)
 
             for i, mod in enumerate(order):
                 nxt = None if args.scheduler is not None else _once(lambda i=i: ahead(i))
