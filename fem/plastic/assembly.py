@@ -144,15 +144,19 @@ class BBarAssembler:
                     slots.append(self._slot_r[k][changed].ravel())
             sigmas.append(sig)
             new_states.append(st_new)
-        K = None
-        if tangent:
-            data = self._elastic_data().copy()
-            if slots:
-                data += np.bincount(np.concatenate(slots), weights=np.concatenate(dvals),
-                                    minlength=len(self._indices))
-            K = sp.csr_matrix((data, self._indices, self._indptr), shape=(self.n, self.n))
-            K.nonelastic = np.concatenate(nonelastic) if nonelastic else np.zeros(0, dtype=np.int64)
+        K = self._tangent(slots, dvals, nonelastic) if tangent else None
         return F, K, sigmas, new_states
+
+    def _tangent(self, slots: list, dvals: list, nonelastic: list) -> sp.csr_matrix:
+        """The elastic stiffness (assembled once) plus the changes ``dvals`` of the elements whose
+        tangent departs from it, at their matrix ``slots``; ``K.nonelastic`` lists those elements."""
+        data = self._elastic_data().copy()
+        if slots:
+            data += np.bincount(np.concatenate(slots), weights=np.concatenate(dvals),
+                                minlength=len(self._indices))
+        K = sp.csr_matrix((data, self._indices, self._indptr), shape=(self.n, self.n))
+        K.nonelastic = np.concatenate(nonelastic) if nonelastic else np.zeros(0, dtype=np.int64)
+        return K
 
     def _evaluate_inelastic(self, u: np.ndarray, states: list):
         """:meth:`evaluate` without the stresses, the law evaluated only at the elements that may
@@ -208,13 +212,7 @@ class BBarAssembler:
                 Kc = self._element_stiffness(els[P[changed]], D[:, :, changed], BqP[:, :, changed])
                 dvals.append((Kc - Ke[P[changed]]).ravel())
                 slots.append(self._slot_r[k][P[changed]].ravel())
-        data = self._elastic_data().copy()
-        if slots:
-            data += np.bincount(np.concatenate(slots), weights=np.concatenate(dvals),
-                                minlength=len(self._indices))
-        K = sp.csr_matrix((data, self._indices, self._indptr), shape=(self.n, self.n))
-        K.nonelastic = np.concatenate(nonelastic) if nonelastic else np.zeros(0, dtype=np.int64)
-        return F, K, None, new_states
+        return F, self._tangent(slots, dvals, nonelastic), None, new_states
 
     def _bsp(self, k: int) -> sp.csr_matrix:
         """Region ``k``'s strain operator as a sparse matrix, ``eps.ravel() = B u`` (built once)."""
