@@ -8,7 +8,7 @@ uncertainty into a verdict.
 
 from __future__ import annotations
 
-import functools
+import contextlib
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import asdict, dataclass, field, fields, is_dataclass
@@ -19,7 +19,7 @@ from coathertz.errors import CoatHertzError
 from coathertz.methods import COSTS, RESOLUTIONS
 
 __all__ = ["CLOSED", "COSTS", "RESOLUTIONS", "VERDICTS", "Claim", "StudyCase", "StudyResult",
-           "check_resolution", "fork_map", "judge"]
+           "check_resolution", "fork_map", "fork_pool", "judge"]
 
 #: The method the paper's claims are about: the closed form is judged, never a reference.
 CLOSED = "closed-form"
@@ -35,17 +35,39 @@ def fork_map(fn: Callable[[Any], Any], jobs: Sequence[Any], workers: int) -> lis
 
     The independent solves of a study's ``analyse`` (its own FFT or FE searches): on up to
     ``workers`` forked processes (the run's ``workers``; all of them finish with the call), in
-    this process where there is one worker, one job or no ``fork``. ``fn`` must be a module-level
-    function (it is pickled by name).
+    this process where there is one worker, one job or no ``fork`` (:func:`fork_pool`). ``fn``
+    must be a module-level function (it is pickled by name).
     """
+    with fork_pool(fn, len(jobs), workers) as submit:
+        futures = [submit(j) for j in jobs]
+        return [f.result() for f in futures]
+
+
+@contextlib.contextmanager
+def fork_pool(fn: Callable[[Any], Any], n_jobs: int, workers: int):
+    """A block in which ``submit(job)`` starts ``fn(job)`` and returns its future (``result()``:
+    its value, or the exception of a failed job): on up to ``min(workers, n_jobs)`` forked
+    processes, which all finish with the block, or at once in this process where there is one
+    worker, one job or no ``fork``. For searches whose later jobs depend on earlier results."""
     import multiprocessing
 
-    if workers <= 1 or len(jobs) <= 1 or "fork" not in multiprocessing.get_all_start_methods():
-        return [_call(fn, j) for j in jobs]
+    if workers <= 1 or n_jobs <= 1 or "fork" not in multiprocessing.get_all_start_methods():
+        yield lambda job: _Done(_call(fn, job))
+        return
     from concurrent.futures import ProcessPoolExecutor
 
-    with ProcessPoolExecutor(min(workers, len(jobs)), mp_context=multiprocessing.get_context("fork")) as ex:
-        return list(ex.map(functools.partial(_call, fn), jobs))
+    with ProcessPoolExecutor(min(workers, n_jobs), mp_context=multiprocessing.get_context("fork")) as ex:
+        yield lambda job: ex.submit(_call, fn, job)
+
+
+class _Done:
+    """A job already done (in this process): the ``result()`` of a future."""
+
+    def __init__(self, value: Any) -> None:
+        self.value = value
+
+    def result(self) -> Any:
+        return self.value
 
 
 def _call(fn: Callable[[Any], Any], job: Any) -> Any:

@@ -30,7 +30,6 @@ Yc/Ys = 1 and 3) at 12 elements across a (~25 s wall on the shared 2 cores, ~6 s
 
 from __future__ import annotations
 
-import contextlib
 import math
 import time
 import warnings
@@ -42,6 +41,7 @@ from coathertz import verification as C
 from coathertz.case import ContactCase
 from coathertz.closedform.hertz import hertz_circular
 from coathertz.materials import Material
+from coathertz.verification.study import fork_pool
 
 NAME = "yield_onset"
 TITLE = "Yield onset: load of first yield (normalised by the uncoated substrate's) and its location"
@@ -126,7 +126,7 @@ def analyse(result: C.StudyResult) -> None:
     hom_id = next((i for i in by_id if by_id[i].params["H"] == 0), None)
     # (the refined re-solve, the longest, first)
     jobs = ([(by_id[hom_id], refined)] if hom_id else []) + [(sc, settings) for sc in by_id.values()]
-    with _search_pool(jobs, result.workers) as submit:
+    with fork_pool(_onset_job, len(jobs), result.workers) as submit:
         pending = [submit(j) for j in jobs]
         fine_hom = pending.pop(0) if hom_id else None
         solved = [f.result() for f in pending]
@@ -217,52 +217,14 @@ def _worst_refined(by_id: dict, solved: list, refined: dict, W_ys: float, submit
     return submit((min(coated, key=lambda t: t[0])[1], refined))
 
 
-class _Done:
-    """A search already done (in this process): the ``result()`` of a future."""
-
-    def __init__(self, value: Any) -> None:
-        self.value = value
-
-    def result(self) -> Any:
-        return self.value
-
-
-@contextlib.contextmanager
-def _search_pool(jobs: list, workers: int):
-    """``submit(job)`` -> future of :func:`_onset_or_error`: on up to ``workers`` forked processes
-    (all finish with the block), or at once in this process (one worker, one job, no ``fork``)."""
-    import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor
-
-    if workers <= 1 or len(jobs) <= 1 or "fork" not in multiprocessing.get_all_start_methods():
-        yield lambda job: _Done(_onset_or_error(job))
-        return
-    with ProcessPoolExecutor(min(workers, len(jobs)), mp_context=multiprocessing.get_context("fork")) as ex:
-        yield lambda job: ex.submit(_onset_or_error, job)
-
-
-#: ``verify`` runs this study first: its onset searches (:func:`solve_onsets`) run in processes of
+#: ``verify`` runs this study first: its onset searches (``analyse``) run in processes of
 #: their own, a few long searches on few processes, and the next studies' cases fill the gaps.
 RUN_EARLY = True
 
 
-def solve_onsets(jobs: list[tuple[C.StudyCase, dict]], workers: int) -> list:
-    """The onset of each (case, FE settings) of ``jobs``, in order; a failed search gives its
-    exception. Up to ``workers`` forked processes (all of them finish with the call)."""
-    import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor
-
-    if workers <= 1 or len(jobs) <= 1 or "fork" not in multiprocessing.get_all_start_methods():
-        return [_onset_or_error(j) for j in jobs]
-    with ProcessPoolExecutor(min(workers, len(jobs)), mp_context=multiprocessing.get_context("fork")) as ex:
-        return list(ex.map(_onset_or_error, jobs))
-
-
-def _onset_or_error(job: tuple[C.StudyCase, dict]):
-    try:
-        return _onset(*job)
-    except Exception as exc:
-        return exc
+def _onset_job(job: tuple[C.StudyCase, dict]):
+    """The onset of one (case, FE settings) job (run by :func:`~coathertz.verification.study.fork_pool`)."""
+    return _onset(*job)
 
 
 def _onset(sc: C.StudyCase, settings: dict):

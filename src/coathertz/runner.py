@@ -227,6 +227,19 @@ def _case_seconds(scalars: dict | None, fallback: float) -> float:
     return float(t) if isinstance(t, int | float) and 0 <= t < float("inf") else fallback
 
 
+def _stored(tasks: Iterable[Task], store: ResultStore) -> dict[tuple[str, str, str], StoredResult]:
+    """The stored results of ``tasks`` (one query per method), by task key."""
+    by_method: dict[int, list[Task]] = {}
+    for t in tasks:
+        by_method.setdefault(id(t.method), []).append(t)
+    out: dict[tuple[str, str, str], StoredResult] = {}
+    for ts in by_method.values():
+        m = ts[0].method
+        found = store.get_many([t.case for t in ts], m.name, m.settings())
+        out.update({t.key: found[t.key[0]] for t in ts if t.key[0] in found})
+    return out
+
+
 def _chunks(tasks: list[Task], chunk_size: int | None) -> list[tuple[Method, list[ContactCase]]]:
     by_method: dict[tuple[str, int], list[Task]] = {}
     methods: dict[tuple[str, int], Method] = {}
@@ -308,19 +321,14 @@ def run_tasks(
     for t in tasks:
         unique.setdefault(t.key, t)
     pending: list[Task] = []
-    by_method: dict[int, list[Task]] = {}
+    found = _stored(unique.values(), store)
     for t in unique.values():
-        by_method.setdefault(id(t.method), []).append(t)
-    for ts in by_method.values():
-        m = ts[0].method
-        found = store.get_many([t.case for t in ts], m.name, m.settings())
-        for t in ts:
-            sr = found.get(t.key[0])
-            if sr is not None and (sr.ok or not retry_errors):
-                outcome.results[t.key] = sr
-                outcome.reused += 1
-            else:
-                pending.append(t)
+        sr = found.get(t.key)
+        if sr is not None and (sr.ok or not retry_errors):
+            outcome.results[t.key] = sr
+            outcome.reused += 1
+        else:
+            pending.append(t)
     adopted, handed = _AHEAD.adopt(pending)
     if adopted or handed:
         covered = {Task(c, m).key for m, cs in [*((m, cs) for m, cs, _ in adopted.values()), *handed]
@@ -512,19 +520,13 @@ class _Ahead:
             return
         groups = [[first, *items]] if isinstance(first, Task) else itertools.chain([first], items)
         for group in groups:  # chunked group by group (a study's cases with each other)
-            chunks = []
             todo: dict[tuple, Task] = {}
             for t in group:
                 if t.key not in taken and not getattr(t.method, "inline", False):
                     todo.setdefault(t.key, t)
             taken |= set(todo)
-            by_method: dict[int, list[Task]] = {}
-            for t in todo.values():
-                by_method.setdefault(id(t.method), []).append(t)
-            for ts in by_method.values():
-                m = ts[0].method
-                found = store.get_many([t.case for t in ts], m.name, m.settings())
-                chunks += _chunks([t for t in ts if t.key[0] not in found], chunk_size)
+            found = _stored(todo.values(), store)
+            chunks = _chunks([t for t in todo.values() if t.key not in found], chunk_size)
             with self._lock:
                 self.queued += chunks
             self._wake.set()
