@@ -58,8 +58,8 @@ class RectQ2:
     ----------
     h_r, h_z
         Signed element sizes ``[nel]`` (the Jacobian ``diag(h_r, h_z)`` of skfem's map).
-    r
-        Radius of the quadrature points ``[nel, nq]``.
+    r, z
+        Coordinates of the quadrature points ``[nel, nq]`` (skfem's bilinear map).
     W
         Reference quadrature weights ``[nq]``.
     N, N_r, N_z
@@ -74,6 +74,7 @@ class RectQ2:
     N: np.ndarray
     N_r: np.ndarray
     N_z: np.ndarray
+    z: np.ndarray | None = None
 
     @classmethod
     def build(cls, mesh: MeshQuad, intorder: int) -> RectQ2:
@@ -97,8 +98,8 @@ class RectQ2:
             h_r, h_z, d_r, d_z = e3[0], e1[1], dN[1], dN[0]
         else:
             raise ValueError("RectQ2 needs axis-aligned elements of one orientation")
-        r = _bilinear(mesh, X[0], X[1])[0]
-        return cls(h_r, h_z, r, W, N, d_r, d_z)
+        r, z = _bilinear(mesh, X[0], X[1])
+        return cls(h_r, h_z, r, W, N, d_r, d_z, z)
 
     @cached_property
     def _reference(self) -> np.ndarray:
@@ -119,6 +120,17 @@ class RectQ2:
             for t, P in enumerate(zz, start=7):
                 out[q, t, 1::2, 1::2] = P
         return out.reshape(nq * 9, 18 * 18)
+
+    def strain(self, u: np.ndarray, element_dofs: np.ndarray) -> np.ndarray:
+        """Strain ``(eps_rr, eps_zz, eps_tt, gamma_rz)`` ``[4, nel, nq]`` of the nodal displacement
+        ``u`` at the quadrature points (``coathertz.fem.forms.quad_strain`` on skfem's basis, equal
+        to round-off): ``d_r u = sum_k u_k N_r,k / h_r``, ``d_z u = sum_k u_k N_z,k / h_z``,
+        ``u_r / r`` with ``u_r = sum_k u_r,k N_k``."""
+        ue = u[element_dofs]  # [18, nel]
+        ur, uz = ue[0::2].T, ue[1::2].T  # [nel, 9]
+        hr, hz = self.h_r[:, None], self.h_z[:, None]
+        return np.array([ur @ self.N_r / hr, uz @ self.N_z / hz, (ur @ self.N) / self.r,
+                         ur @ self.N_z / hz + uz @ self.N_r / hr])
 
     def elasticity(self, lam: np.ndarray, mu: np.ndarray, element_dofs: np.ndarray, N: int) -> sp.csr_matrix:
         """The matrix of ``coathertz.fem.forms.elasticity`` (same quadrature, equal to round-off).

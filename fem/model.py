@@ -84,6 +84,29 @@ class FEModel:
         the linear stiffness does without it, :mod:`coathertz.fem.affine`)."""
         return Basis(self.lm.mesh, self.elem, intorder=INTORDER, dofs=self.dofs)
 
+    @cached_property
+    def rect(self) -> RectQ2 | None:
+        """The rectangle tables of the mesh (:class:`coathertz.fem.affine.RectQ2`), ``None`` if an
+        element is not an axis-aligned rectangle."""
+        try:
+            return RectQ2.build(self.lm.mesh, INTORDER)
+        except ValueError:
+            return None
+
+    def quad_strain(self, u: np.ndarray) -> np.ndarray:
+        """Strain ``[4, nel, nq]`` of the displacement part of ``u`` at the quadrature points (the
+        rectangle tables where they apply, else skfem's basis, :func:`forms.quad_strain`)."""
+        u = u[: self.n_u]
+        if self.rect is None:
+            return forms.quad_strain(self.basis, u)
+        return self.rect.strain(u, self.dofs.element_dofs)
+
+    def quad_points(self) -> np.ndarray:
+        """``(r, z)`` of the quadrature points ``[2, nel, nq]``."""
+        if self.rect is None:
+            return np.asarray(self.basis.global_coordinates())
+        return np.array([self.rect.r, self.rect.z])
+
     @property
     def nq(self) -> int:
         """Quadrature points per element."""
@@ -216,9 +239,8 @@ class FEModel:
     def _elasticity(self, lam: np.ndarray, mu: np.ndarray) -> sp.csr_matrix:
         """The stiffness from the rectangle tables of the tensor mesh (:mod:`coathertz.fem.affine`;
         skfem's generic assembly if an element is not an axis-aligned rectangle)."""
-        try:
-            q = RectQ2.build(self.lm.mesh, INTORDER)
-        except ValueError:
+        q = self.rect
+        if q is None:
             return asm(forms.elasticity, self.basis, lam=lam, mu=mu)
         return q.elasticity(lam, mu, self.dofs.element_dofs, self.n_u)
 

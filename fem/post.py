@@ -30,6 +30,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from skfem import Basis, ElementQuad1, ElementQuad2, LinearForm, asm
 
@@ -91,8 +92,7 @@ def contact_radius(r: np.ndarray, p: np.ndarray, gap: np.ndarray, active: np.nda
 
 def quad_stress(model: FEModel, x: np.ndarray) -> dict[int, np.ndarray]:
     """Stress ``[4, nel_region, nqp]`` per region index at the quadrature points."""
-    u = x[: model.n_u]
-    eps = forms.quad_strain(model.basis, u)
+    eps = model.quad_strain(x)
     out = {}
     p_off = model.n_u
     blocks = iter(model._p_blocks)
@@ -133,28 +133,74 @@ class StressField:
     ``sig`` (optional): quadrature-point stresses per region index, e.g. from a non-linear law's
     committed state (:mod:`coathertz.fem.plastic.method`); default: the linear-elastic stresses
     of ``x`` (:func:`quad_stress`).
+
+    A region is projected when it is first read (:meth:`at`). On the tensor-product mesh of
+    :mod:`coathertz.fem.mesh` (every element an axis-aligned rectangle) the mass matrix and the
+    right-hand sides come from the reference tables of :class:`coathertz.fem.affine.RectQ2` (the
+    same quadrature as skfem's ``asm(forms.mass, ...)``, equal to round-off, measured <= 1e-15
+    relative in ``tests/fem/test_stress_points.py``) and the mass matrix, symmetric positive
+    definite, is factorised in SuperLU's symmetric mode; other meshes use skfem's assembly.
     """
 
     def __init__(self, model: FEModel, x: np.ndarray, sig: dict[int, np.ndarray] | None = None):
         self.model = model
-        mesh = model.lm.mesh
-        self.full = Basis(mesh, ElementQuad2(), intorder=INTORDER)
-        self.nodal = {}
-        sig = quad_stress(model, x) if sig is None else sig
-        for k, reg in enumerate(model.regions):
-            sb = Basis(mesh, ElementQuad2(), intorder=INTORDER, elements=reg.elements)
+        self._x = x
+        self._sig = sig
+        self.nodal: dict[int, np.ndarray] = {}
+        self._full: Basis | None = None
+        self._rect = model.rect
+
+    @property
+    def full(self) -> Basis:
+        """Scalar Q2 basis of the whole mesh (its probes; built on first use, one quadrature
+        point per element: the probes do not depend on the quadrature)."""
+        if self._full is None:
+            self._full = Basis(self.model.lm.mesh, ElementQuad2(), intorder=1)
+        return self._full
+
+    def _stresses(self) -> dict[int, np.ndarray]:
+        if self._sig is None:
+            self._sig = quad_stress(self.model, self._x)
+        return self._sig
+
+    def _project(self, k: int) -> np.ndarray:
+        """Nodal values ``[4, N]`` of the projection of region ``k`` (zero off the region)."""
+        mesh = self.model.lm.mesh
+        els = self.model.regions[k].elements
+        sig = self._stresses()[k]
+        if self._rect is None:
+            sb = Basis(mesh, ElementQuad2(), intorder=INTORDER, elements=els)
             dofs = np.unique(sb.element_dofs)
             M = asm(forms.mass, sb).tocsc()[dofs][:, dofs]
             lu = spla.splu(M)
             vals = np.zeros((4, sb.N))
             for i in range(4):
-                b = asm(LinearForm(lambda v, w: w["s"] * v * 2 * np.pi * w.x[0]), sb, s=sig[k][i])
+                b = asm(LinearForm(lambda v, w: w["s"] * v * 2 * np.pi * w.x[0]), sb, s=sig[i])
                 vals[i, dofs] = lu.solve(b[dofs])
-            self.nodal[k] = vals
+            return vals
+        q = self._rect
+        edofs = self.full.element_dofs[:, els]  # [9, nel_k]
+        n = self.full.N
+        dx = 2 * np.pi * q.r[els] * np.abs(q.h_r[els] * q.h_z[els])[:, None] * q.W  # [nel_k, nq]
+        Me = dx @ np.einsum("kq,lq->qkl", q.N, q.N).reshape(len(q.W), 81)  # [nel_k, 81]
+        rows = np.repeat(edofs.T, 9, axis=1).ravel()
+        cols = np.tile(edofs.T, (1, 9)).ravel()
+        M = sp.csc_matrix((Me.ravel(), (rows, cols)), shape=(n, n))
+        dofs = np.unique(edofs)
+        lu = spla.splu(M[dofs][:, dofs], permc_spec="MMD_AT_PLUS_A", options={"SymmetricMode": True})
+        # b_i[dof(j, e)] = sum_q N_j(q) sigma_i(e, q) dx(e, q)
+        be = np.einsum("jq,ieq->iej", q.N, sig * dx[None])  # [4, nel_k, 9]
+        vals = np.zeros((4, n))
+        for i in range(4):
+            b = np.bincount(edofs.T.ravel(), weights=be[i].ravel(), minlength=n)
+            vals[i, dofs] = lu.solve(b[dofs])
+        return vals
 
     def at(self, region: int, pts: np.ndarray) -> np.ndarray:
         """Stresses ``[4, npts]`` of ``region`` at ``pts[2, npts]`` (points inside the region)."""
-        P = self.full.probes(pts)
+        if region not in self.nodal:
+            self.nodal[region] = self._project(region)
+        P = self.full.probes(pts).tocsr()
         return np.array([P @ self.nodal[region][i] for i in range(4)])
 
 

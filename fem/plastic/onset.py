@@ -87,9 +87,11 @@ def _yield_stresses(case: ContactCase, Yc: float | None, Ys: float | None) -> tu
     return Yc_, Ys_
 
 
-def _locate(model, x, k: int, r0: float, z0: float, s: float) -> tuple[float, float, float]:
-    """Refine the maximum of von Mises in region ``k`` near ``(r0, z0)`` on the projected field."""
-    sf = StressField(model, x)
+def _locate(model, x, k: int, r0: float, z0: float, s: float,
+            sig: dict | None = None) -> tuple[float, float, float]:
+    """Refine the maximum of von Mises in region ``k`` near ``(r0, z0)`` on the projected field
+    (``sig``: the quadrature-point stresses of ``x`` where already computed)."""
+    sf = StressField(model, x, sig)
     els = model.regions[k].elements
     pz = model.lm.mesh.p[:, model.lm.mesh.t[:, els]]
     rmin, rmax, zmin, zmax = pz[0].min(), pz[0].max(), pz[1].min(), pz[1].max()
@@ -142,7 +144,7 @@ def yield_onset(case: ContactCase, method: FEMMethod | None = None, Yc: float | 
         names = (["coating"] if lm.h > 0 else []) + ([] if lm.rigid_base else ["substrate"])
         sig = quad_stress(model, path.x)
         best = (-1.0, -1, 0.0, 0.0)
-        coords = model.basis.global_coordinates()
+        coords = model.quad_points()
         for k, name in enumerate(names):
             Y = Yc_ if name == "coating" else Ys_
             if math.isinf(Y):
@@ -156,7 +158,7 @@ def yield_onset(case: ContactCase, method: FEMMethod | None = None, Yc: float | 
         s = lm.a_ref / lm.spec.n_a
         if lm.h > 0:
             s = min(s, lm.h / max(lm.spec.n_coat, 1))
-        r_m, z_m, vm_m = _locate(model, path.x, k, r0, z0, s)
+        r_m, z_m, vm_m = _locate(model, path.x, k, r0, z0, s, sig)
         Y = Yc_ if names[k] == "coating" else Ys_
         rho = max(rho, vm_m / Y)
         if abs(rho - 1.0) < tol:
