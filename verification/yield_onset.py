@@ -33,6 +33,7 @@ from __future__ import annotations
 import math
 import time
 import warnings
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -122,19 +123,24 @@ def analyse(result: C.StudyResult) -> None:
     rows, t0 = [], time.perf_counter()
     by_id = {sc.id: sc for sc in cases(result.resolution)}
     # every onset search is independent: the map and the homogeneous case's refined re-solve run
-    # side by side on the run's worker processes
+    # side by side on the run's worker processes; the searches of one elastic problem (the same
+    # E, H and mesh, other yield stresses) run as one job, sharing their solves
     hom_id = next((i for i in by_id if by_id[i].params["H"] == 0), None)
     # (the refined re-solve, the longest, first)
     jobs = ([(by_id[hom_id], refined)] if hom_id else []) + [(sc, settings) for sc in by_id.values()]
-    with fork_pool(_onset_job, len(jobs), result.workers) as submit:
-        pending = [submit(j) for j in jobs]
-        fine_hom = pending.pop(0) if hom_id else None
-        solved = [f.result() for f in pending]
+    groups = _groups(jobs)
+    with fork_pool(_onset_job, len(groups), result.workers) as submit:
+        pending = [submit([jobs[i] for i in g]) for g in groups]
+        done: list = [None] * len(jobs)
+        for g, f in list(zip(groups, pending, strict=True))[1 if hom_id else 0:]:
+            for i, o in zip(g, _each(f.result(), len(g)), strict=True):
+                done[i] = o
+        solved = done[1:] if hom_id else done
         # the worst coated case's refined re-solve starts as soon as the map is known, beside the
         # homogeneous case's (still running): not after it, alone, in this process
         worst_fine = _worst_refined(by_id, solved, refined, W_ys, submit)
-        fine = {hom_id: fine_hom.result()} if hom_id else {}
-        worst_fine = worst_fine.result() if worst_fine is not None else None
+        fine = {hom_id: _each(pending[0].result(), 1)[0]} if hom_id else {}
+        worst_fine = _each(worst_fine.result(), 1)[0] if worst_fine is not None else None
     for sc, o in zip(by_id.values(), solved, strict=True):
         p = sc.params
         if isinstance(o, Exception):  # reported, not fatal: one case must not sink the map
@@ -209,12 +215,29 @@ def mesh_uncertainty(sc: C.StudyCase, row: dict, refined: dict, keys: tuple[str,
 
 def _worst_refined(by_id: dict, solved: list, refined: dict, W_ys: float, submit):
     """Submit the refined re-solve of the coated case with the smallest ``W_y / W_ys`` (the one
-    the map's claim quotes, chosen as :func:`analyse` chooses it); None without such a case."""
-    coated = [(o.W_y / W_ys, sc) for sc, o in zip(by_id.values(), solved, strict=True)
+    the map's claim quotes, chosen as :func:`analyse` chooses it); None without such a case.
+    Its search starts at the coarser mesh's ``W_y`` (not at ``W_ys``): the same criterion
+    (:func:`~coathertz.fem.plastic.onset.yield_onset`), two or three solves fewer."""
+    coated = [(o.W_y / W_ys, sc, o) for sc, o in zip(by_id.values(), solved, strict=True)
               if not isinstance(o, Exception) and sc.params["H"] > 0]
     if not coated:
         return None
-    return submit((min(coated, key=lambda t: t[0])[1], refined))
+    _, sc, o = min(coated, key=lambda t: t[0])
+    return submit([(replace(sc, case=replace(sc.case, W=o.W_y)), refined)])
+
+
+def _groups(jobs: list) -> list[list[int]]:
+    """Indices of ``jobs`` ((study case, FE settings) pairs) grouped by elastic problem: the same
+    ``E``, ``H`` and FE settings (the yield stresses may differ), in order of first appearance."""
+    out: dict = {}
+    for i, (sc, st) in enumerate(jobs):
+        out.setdefault((sc.params["E"], sc.params["H"], tuple(sorted(st.items()))), []).append(i)
+    return list(out.values())
+
+
+def _each(value: Any, n: int) -> list:
+    """The ``n`` results of a group job (a failed job: its exception for each)."""
+    return [value] * n if isinstance(value, Exception) else value
 
 
 #: ``verify`` runs this study first: its onset searches (``analyse``) run in processes of
@@ -222,18 +245,27 @@ def _worst_refined(by_id: dict, solved: list, refined: dict, W_ys: float, submit
 RUN_EARLY = True
 
 
-def _onset_job(job: tuple[C.StudyCase, dict]):
-    """The onset of one (case, FE settings) job (run by :func:`~coathertz.verification.study.fork_pool`)."""
-    return _onset(*job)
+def _onset_job(jobs: list[tuple[C.StudyCase, dict]]) -> list:
+    """The onsets of (case, FE settings) jobs of one elastic problem (:func:`_groups`), sharing
+    their solves (run by :func:`~coathertz.verification.study.fork_pool`); a failed search gives
+    its exception."""
+    solves: dict = {}
+    out = []
+    for sc, settings in jobs:
+        try:
+            out.append(_onset(sc, settings, solves))
+        except Exception as exc:  # reported, not fatal: one case must not sink the map
+            out.append(exc)
+    return out
 
 
-def _onset(sc: C.StudyCase, settings: dict):
+def _onset(sc: C.StudyCase, settings: dict, solves: dict | None = None):
     from coathertz.fem.method import FEMMethod
     from coathertz.fem.plastic.onset import yield_onset
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        return yield_onset(sc.case, FEMMethod(**settings), Yc=sc.params["Yc_Ys"] * YS, Ys=YS)
+        return yield_onset(sc.case, FEMMethod(**settings), Yc=sc.params["Yc_Ys"] * YS, Ys=YS, solves=solves)
 
 
 def plot(result: C.StudyResult, outdir) -> list:

@@ -87,11 +87,8 @@ def _yield_stresses(case: ContactCase, Yc: float | None, Ys: float | None) -> tu
     return Yc_, Ys_
 
 
-def _locate(model, x, k: int, r0: float, z0: float, s: float,
-            sig: dict | None = None) -> tuple[float, float, float]:
-    """Refine the maximum of von Mises in region ``k`` near ``(r0, z0)`` on the projected field
-    (``sig``: the quadrature-point stresses of ``x`` where already computed)."""
-    sf = StressField(model, x, sig)
+def _locate(model, k: int, r0: float, z0: float, s: float, sf: StressField) -> tuple[float, float, float]:
+    """Refine the maximum of von Mises in region ``k`` near ``(r0, z0)`` on the projected field ``sf``."""
     els = model.regions[k].elements
     pz = model.lm.mesh.p[:, model.lm.mesh.t[:, els]]
     rmin, rmax, zmin, zmax = pz[0].min(), pz[0].max(), pz[1].min(), pz[1].max()
@@ -115,8 +112,32 @@ def _locate(model, x, k: int, r0: float, z0: float, s: float,
     return float(r_m), float(z_m), float(max(v1, v2, vm[i, j]))
 
 
+@dataclass
+class _Solved:
+    """An elastic solve of the search at one load, with its quadrature-point stresses and the
+    recovered field (:class:`~coathertz.fem.post.StressField`, regions projected when read)."""
+
+    res: object
+    model: object
+    path: object
+    sig: dict
+    field: StressField
+
+
+def _solve(method: FEMMethod, case: ContactCase, solves: dict | None) -> _Solved:
+    if solves is not None and case.W in solves:
+        return solves[case.W]
+    res, model, path = method.solve_full(case)
+    sig = quad_stress(model, path.x)
+    out = _Solved(res, model, path, sig, StressField(model, path.x, sig))
+    if solves is not None:
+        solves[case.W] = out
+    return out
+
+
 def yield_onset(case: ContactCase, method: FEMMethod | None = None, Yc: float | None = None,
-                Ys: float | None = None, tol: float = 1e-3, max_solves: int = 8) -> YieldOnset:
+                Ys: float | None = None, tol: float = 1e-3, max_solves: int = 8,
+                solves: dict | None = None) -> YieldOnset:
     """Load ``W_y`` of first yield of ``case`` (its load is the first guess) and where it occurs.
 
     Parameters
@@ -130,6 +151,11 @@ def yield_onset(case: ContactCase, method: FEMMethod | None = None, Yc: float | 
         (a region without either never yields).
     tol
         Stop when ``|max sigma_vM / Y - 1| < tol``.
+    solves
+        The elastic solves by load, shared by searches of the same case (its elastic problem:
+        bodies, geometry) and ``method`` with other yield stresses: a load solved before is not
+        solved again (the searches take the same steps until their yield stresses make them
+        differ). ``None``: nothing shared.
     """
     from dataclasses import replace
 
@@ -138,11 +164,10 @@ def yield_onset(case: ContactCase, method: FEMMethod | None = None, Yc: float | 
     W = case.W
     prev: tuple[float, float] | None = None  # (log W, log rho) of the previous solve
     for it in range(1, max_solves + 1):
-        c = replace(case, W=W)
-        res, model, path = method.solve_full(c)
+        sv = _solve(method, replace(case, W=W), solves)
+        res, model, sig = sv.res, sv.model, sv.sig
         lm = model.lm
         names = (["coating"] if lm.h > 0 else []) + ([] if lm.rigid_base else ["substrate"])
-        sig = quad_stress(model, path.x)
         best = (-1.0, -1, 0.0, 0.0)
         coords = model.quad_points()
         for k, name in enumerate(names):
@@ -158,7 +183,7 @@ def yield_onset(case: ContactCase, method: FEMMethod | None = None, Yc: float | 
         s = lm.a_ref / lm.spec.n_a
         if lm.h > 0:
             s = min(s, lm.h / max(lm.spec.n_coat, 1))
-        r_m, z_m, vm_m = _locate(model, path.x, k, r0, z0, s, sig)
+        r_m, z_m, vm_m = _locate(model, k, r0, z0, s, sv.field)
         Y = Yc_ if names[k] == "coating" else Ys_
         rho = max(rho, vm_m / Y)
         if abs(rho - 1.0) < tol:

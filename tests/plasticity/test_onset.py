@@ -56,3 +56,26 @@ def test_coated_onset_location_and_bad_input():
     with pytest.raises(CoatHertzError, match="Yc must satisfy"):
         yield_onset(case, Yc=-1.0)
     assert Coating  # imported for the reader: a coated body
+
+
+def test_searches_sharing_their_solves_give_the_same_onsets():
+    """Two searches of one elastic problem whose substrate yields first (Yc = 4 and 8 Ys: the
+    coating's yield stress never binds) take the same steps: with ``solves`` shared the second
+    solves nothing and both give exactly the numbers of an unshared search."""
+    sub = Material(200e9, 0.3)
+    case = ContactCase.sphere_on_coated_half_space(0.01, 40.0, Material(400e9, 0.3), 40e-6, sub)
+    calls = []
+
+    class Counting(FEMMethod):
+        def solve_full(self, c):
+            calls.append(c.W)
+            return super().solve_full(c)
+
+    m = Counting(mesh="coarse")
+    alone = yield_onset(case, m, Yc=4e9, Ys=1e9)
+    n_alone = len(calls)
+    solves: dict = {}
+    a = yield_onset(case, m, Yc=4e9, Ys=1e9, solves=solves)
+    b = yield_onset(case, m, Yc=8e9, Ys=1e9, solves=solves)
+    assert a == alone and (b.W_y, b.r, b.z, b.where) == (alone.W_y, alone.r, alone.z, alone.where)
+    assert len(calls) == 2 * n_alone and len(solves) == n_alone  # the second search: no solve
