@@ -90,6 +90,11 @@ class ContactSolution:
     active: np.ndarray  # bool mask on the candidates
     iterations: int
     history: list = field(default_factory=list)
+    #: ``resolve(W) -> ContactSolution``: the same problem at the load ``W`` on the same condensed
+    #: factorisation (:meth:`Condensed.at_load`), started from this active set; ``None`` on the
+    #: refactorising path. Valid where the right-hand side and the essential values are
+    #: proportional to the load (the elastic model: far field and axis, no body force).
+    resolve: object = None
 
 
 def _solve_superposed(prob: ContactProblem, solver, K, rhs1, rhs2, fixed, val1, val2):
@@ -161,6 +166,16 @@ class Condensed:
             G = G + prob.extra[0]
             u0_c = u0_c + prob.extra[1]
         return cls(prob, free, rhs0, cf.solve, 0.5 * (G + G.T), u0_c)
+
+    def at_load(self, W: float) -> Condensed:
+        """The problem at the load ``W``: ``u0`` (the candidates' displacement without contact,
+        a second body's included), the right-hand side and the essential values scaled by
+        ``W / prob.W``; the factorisation and the compliance ``G`` are the same."""
+        from dataclasses import replace
+
+        f = W / self.prob.W
+        prob = replace(self.prob, W=W, f=f * self.prob.f, fixed_values=f * self.prob.fixed_values)
+        return Condensed(prob, self.free, f * self.rhs0, self.solve, self.G, f * self.u0_c)
 
     def step(self, active: np.ndarray, compliance: np.ndarray | None = None):
         """``(None, u_C, delta, lambda)`` for the active set (``compliance``: penalty ``1/eps``)."""
@@ -314,11 +329,24 @@ def _solve_scheme(scheme, prob: ContactProblem, solver, active0: np.ndarray,
         with blas_threads(1):  # small dense algebra (solvers module docstring)
             cond = Condensed.build(prob, solver)
             if cond is not None:
-                step = condensed_step(cond)
-                return _loop(prob, solver, lambda p, s, a: step(a), scheme._update, active0.copy(),
-                             scheme.maxiter, finish=cond.full)
+                return _condensed_loop(scheme, cond, solver, active0, condensed_step)
     _no_extra(prob)
     return _loop(prob, solver, _legacy(scheme._step), scheme._update, active0.copy(), scheme.maxiter)
+
+
+def _condensed_loop(scheme, cond: Condensed, solver, active0: np.ndarray, condensed_step) -> ContactSolution:
+    """The active-set loop on one condensed factorisation; the answer can be solved again at
+    another load (``ContactSolution.resolve``)."""
+    step = condensed_step(cond)
+    sol = _loop(cond.prob, solver, lambda p, s, a: step(a), scheme._update, active0.copy(), scheme.maxiter,
+                finish=cond.full)
+
+    def resolve(W: float) -> ContactSolution:
+        with blas_threads(1):
+            return _condensed_loop(scheme, cond.at_load(W), solver, sol.active, condensed_step)
+
+    sol.resolve = resolve
+    return sol
 
 
 @dataclass(frozen=True)

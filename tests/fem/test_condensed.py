@@ -123,3 +123,30 @@ def test_nested_dissection_equals_the_box_recursion():
     i, j = i[keep], j[keep]
     last = (j == 36) & (i < 30) & (np.arange(len(i)) % 2 == 1)
     assert np.array_equal(nested_dissection(i, j, last), _recursive_nd(i, j, last, LEAF_NODES))
+
+
+@pytest.mark.parametrize("factor", [0.3, 2.5])
+def test_resolve_at_another_load_equals_a_new_solve_on_the_same_mesh(fx, factor):
+    """``ContactSolution.resolve(W)`` (the condensed factorisation of the solve at ``W0`` reused,
+    the far field and ``u0`` scaled by ``W / W0``) against a contact solve from scratch at ``W``
+    on the same model: displacements, delta and the multipliers equal to 1e-9 (measured
+    ~1e-13), and the resolved answer can itself be resolved back to ``W0``."""
+    from coathertz.fem.contact import ActiveSet
+    from coathertz.fem.loading import solve_incremental
+    from coathertz.fem.solvers import DirectSolver
+
+    case = fx.coated_case(800e9, 0.3)
+    _, model, path = FEMMethod(mesh="coarse").solve_full(case)
+    W0 = case.W
+    r_c = model.r_dof[model.candidates]
+    a0 = float(r_c[path.solution.active].max())
+    fresh = solve_incremental(model, ActiveSet(), DirectSolver(), factor * W0, lambda r: r**2 / (2 * case.R),
+                              1.0, a0 / 20, active0=r_c <= a0 * factor ** (1 / 3)).solution
+    got = path.solution.resolve(factor * W0)
+    assert got.delta == pytest.approx(fresh.delta, rel=1e-9)
+    assert np.array_equal(got.active, fresh.active)
+    assert np.abs(got.u - fresh.u).max() <= 1e-9 * np.abs(fresh.u).max()
+    assert np.abs(got.lam - fresh.lam).max() <= 1e-9 * np.abs(fresh.lam).max()
+    back = got.resolve(W0)
+    assert back.delta == pytest.approx(path.solution.delta, rel=1e-9)
+    assert np.abs(back.u - path.x).max() <= 1e-9 * np.abs(path.x).max()
