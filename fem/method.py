@@ -388,8 +388,14 @@ class FEMMethod:
     def solve(self, case: ContactCase) -> ContactResult:
         return self.solve_full(require_case(case, self.name))[0]
 
-    def solve_full(self, case: ContactCase) -> tuple[ContactResult, FEModel, LoadPath]:
-        """Like :meth:`solve`, also returning the model and the load path (for VTU output)."""
+    def solve_full(self, case: ContactCase, a_guess: float | None = None
+                   ) -> tuple[ContactResult, FEModel, LoadPath]:
+        """Like :meth:`solve`, also returning the model and the load path (for VTU output).
+
+        ``a_guess``: the contact radius to build the first mesh around, where the caller knows a
+        better one than the layered Hertz estimate (:meth:`_predict_a`), e.g. a search over loads
+        from its previous solve; the mesh is rebuilt around the computed radius as always if that
+        falls outside the refined zone."""
         why = self._stack_refusal(case)
         if why is not None:
             raise CoatHertzError(why)
@@ -411,7 +417,9 @@ class FEMMethod:
         def g0(r):
             return r**2 / (2.0 * eq.R)  # Hertz paraboloid
 
-        a_ref = self._predict_a(eq, case.W)
+        if a_guess is not None and not (0 < a_guess < math.inf):
+            raise CoatHertzError(f"a_guess must satisfy 0 < a_guess < inf [m], got {a_guess!r}")
+        a_ref = self._predict_a(eq, case.W) if a_guess is None else float(a_guess)
         interface = case.interface_for(self.interface)
         interfaces = tuple(L.interface for L in layers) if case.is_stacked else interface
         remeshes = 0

@@ -32,7 +32,7 @@ from scipy.optimize import minimize_scalar
 from coathertz.case import ContactCase
 from coathertz.errors import CoatHertzError, ConvergenceError
 from coathertz.fem.method import FEMMethod, axisymmetric_equivalent, refuse_plastic_stack
-from coathertz.fem.post import StressField, quad_stress, von_mises
+from coathertz.fem.post import StressField, contact_radius, quad_stress, surface_pressure, von_mises
 
 
 def hertz_axis_onset(nu: float) -> tuple[float, float]:
@@ -127,14 +127,17 @@ def _self_similar(case: ContactCase) -> bool:
 
 
 def _predict(sv: _Solved, names: list[str], Ys: tuple[float, float], W: float, rho: float,
-             rho_q: float, slope: float, tol: float, trials: int = 6) -> float | None:
+             rho_q: float, slope: float, tol: float, trials: int = 6) -> tuple[float, float] | None:
     """The next load of the search where the field is not self-similar: the root of
     ``c rho_q(W') = 1`` on the mesh and factorisation of the solve at ``W`` (the contact solved
     again at trial loads, ``ContactSolution.resolve``: a few dense steps and one sparse solve
     each), with ``rho_q`` the largest quadrature-point ratio and ``c = rho / rho_q`` at ``W``
     (the located maximum's excess). Secant steps in ``log W`` from the search's ``slope``, until
-    ``|c rho_q - 1| < tol / 4``. The next full solve (its own mesh) then checks the criterion;
-    ``None`` where the factorisation cannot be reused or a trial fails (the search's own step)."""
+    ``|c rho_q - 1| < tol / 4``. The next full solve (its own mesh, built around the contact
+    radius of the last trial, :func:`~coathertz.fem.post.contact_radius`: no rebuild where the
+    layered Hertz estimate of the radius is off) then checks the criterion. Returns that load
+    and radius; ``None`` where the factorisation cannot be reused or a trial fails (then the
+    search's own step)."""
     resolve = getattr(sv.path.solution, "resolve", None)
     if resolve is None:
         return None
@@ -142,9 +145,17 @@ def _predict(sv: _Solved, names: list[str], Ys: tuple[float, float], W: float, r
     Y = [Ys[0] if n == "coating" else Ys[1] for n in names]
     c = rho / rho_q
 
+    cand = model.candidates
+    r_c, weights = model.r_dof[cand], model.weights_all[cand]
+    radius = [math.nan]
+
     def f(x: float) -> float:
         sol = resolve(math.exp(x))
         sig = quad_stress(model, sol.u)
+        try:  # (None where the contact reaches the end of this mesh's candidates)
+            radius[0] = contact_radius(r_c, surface_pressure(sol.lam, weights), sol.gap, sol.active)["a"]
+        except ConvergenceError:
+            radius[0] = math.nan
         return math.log(c * max(float(von_mises(sig[k]).max()) / Y[k] for k in range(len(names))
                                 if math.isfinite(Y[k])))
 
@@ -154,15 +165,18 @@ def _predict(sv: _Solved, names: list[str], Ys: tuple[float, float], W: float, r
         for _ in range(trials):
             f1 = f(x1)
             if abs(f1) < tol / 4:
-                return math.exp(x1)
+                break
             if abs(f1 - f0) < 1e-14:
                 return None
             x0, f0, x1 = x1, f1, x1 - f1 * (x1 - x0) / (f1 - f0)
             if abs(x1 - x0) > math.log(100.0):  # no root nearby on this mesh
                 return None
+        else:
+            f(x1)  # the radius at the last step
     except (ConvergenceError, np.linalg.LinAlgError, ValueError):
         return None
-    return math.exp(x1)
+    a = radius[0]
+    return math.exp(x1), (a if 0 < a < math.inf else None)  # (nan: no guess)
 
 
 @dataclass
@@ -177,10 +191,11 @@ class _Solved:
     field: StressField
 
 
-def _solve(method: FEMMethod, case: ContactCase, solves: dict | None) -> _Solved:
+def _solve(method: FEMMethod, case: ContactCase, solves: dict | None,
+           a_guess: float | None = None) -> _Solved:
     if solves is not None and case.W in solves:
         return solves[case.W]
-    res, model, path = method.solve_full(case)
+    res, model, path = method.solve_full(case, a_guess=a_guess)
     sig = quad_stress(model, path.x)
     out = _Solved(res, model, path, sig, StressField(model, path.x, sig))
     if solves is not None:
@@ -216,9 +231,10 @@ def yield_onset(case: ContactCase, method: FEMMethod | None = None, Yc: float | 
     method = method or FEMMethod()
     similar = _self_similar(case)
     W = case.W
+    a_guess = None  # the contact radius at W predicted on the previous solve's mesh
     prev: tuple[float, float] | None = None  # (log W, log rho) of the previous solve
     for it in range(1, max_solves + 1):
-        sv = _solve(method, replace(case, W=W), solves)
+        sv = _solve(method, replace(case, W=W), solves, a_guess)
         res, model, sig = sv.res, sv.model, sv.sig
         lm = model.lm
         names = (["coating"] if lm.h > 0 else []) + ([] if lm.rigid_base else ["substrate"])
@@ -250,8 +266,8 @@ def yield_onset(case: ContactCase, method: FEMMethod | None = None, Yc: float | 
             s_ = (math.log(rho) - prev[1]) / (math.log(W) - prev[0])
             slope = s_ if 0.05 < s_ < 2.0 else slope
         prev = (math.log(W), math.log(rho))
-        W_next = W * math.exp(-math.log(rho) / slope)
+        W_next, a_guess = W * math.exp(-math.log(rho) / slope), None
         if not similar:
-            W_next = _predict(sv, names, (Yc_, Ys_), W, rho, best[0], slope, tol) or W_next
+            W_next, a_guess = _predict(sv, names, (Yc_, Ys_), W, rho, best[0], slope, tol) or (W_next, None)
         W = W_next
     raise ConvergenceError(f"yield onset: max sigma_vM / Y = {rho:.4f} after max_solves={max_solves} solves")

@@ -67,9 +67,9 @@ def test_searches_sharing_their_solves_give_the_same_onsets():
     calls = []
 
     class Counting(FEMMethod):
-        def solve_full(self, c):
+        def solve_full(self, c, **kw):
             calls.append(c.W)
-            return super().solve_full(c)
+            return super().solve_full(c, **kw)
 
     m = Counting(mesh="coarse")
     alone = yield_onset(case, m, Yc=4e9, Ys=1e9)
