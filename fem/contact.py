@@ -244,7 +244,8 @@ class TwoBody:
         z = np.zeros(len(cand))
         prob = ContactProblem(K, np.zeros(K.shape[0]), fixed, vals, cand, r_cand, z, z, W, 1.0, 1.0,
                               grid=model.dof_grid())
-        cond = Condensed.build(prob, DirectSolver())
+        with blas_threads(1):  # the compliance's inverse: small dense algebra (solvers module docstring)
+            cond = Condensed.build(prob, DirectSolver())
         if cond is None:
             raise ValueError("the indenter's stiffness could not be condensed")
         return cls(inner, cond.G, cond.u0_c)
