@@ -216,14 +216,15 @@ def mesh_uncertainty(sc: C.StudyCase, row: dict, refined: dict, keys: tuple[str,
 def _worst_refined(by_id: dict, solved: list, refined: dict, W_ys: float, submit):
     """Submit the refined re-solve of the coated case with the smallest ``W_y / W_ys`` (the one
     the map's claim quotes, chosen as :func:`analyse` chooses it); None without such a case.
-    Its search starts at the coarser mesh's ``W_y`` (not at ``W_ys``): the same criterion
+    Its search starts at the coarser mesh's ``W_y`` (not at ``W_ys``), its first mesh built around
+    the coarser mesh's contact radius there: the same criterion
     (:func:`~coathertz.fem.plastic.onset.yield_onset`), two or three solves fewer."""
     coated = [(o.W_y / W_ys, sc, o) for sc, o in zip(by_id.values(), solved, strict=True)
               if not isinstance(o, Exception) and sc.params["H"] > 0]
     if not coated:
         return None
     _, sc, o = min(coated, key=lambda t: t[0])
-    return submit([(replace(sc, case=replace(sc.case, W=o.W_y)), refined)])
+    return submit([(replace(sc, case=replace(sc.case, W=o.W_y)), refined, o.a_y)])
 
 
 def _groups(jobs: list) -> list[list[int]]:
@@ -245,27 +246,28 @@ def _each(value: Any, n: int) -> list:
 RUN_EARLY = True
 
 
-def _onset_job(jobs: list[tuple[C.StudyCase, dict]]) -> list:
-    """The onsets of (case, FE settings) jobs of one elastic problem (:func:`_groups`), sharing
-    their solves (run by :func:`~coathertz.verification.study.fork_pool`); a failed search gives
-    its exception."""
+def _onset_job(jobs: list[tuple]) -> list:
+    """The onsets of (case, FE settings[, contact radius at the case's load]) jobs of one elastic
+    problem (:func:`_groups`), sharing their solves (run by
+    :func:`~coathertz.verification.study.fork_pool`); a failed search gives its exception."""
     solves: dict = {}
     out = []
-    for sc, settings in jobs:
+    for sc, settings, *a in jobs:
         try:
-            out.append(_onset(sc, settings, solves))
+            out.append(_onset(sc, settings, solves, *a))
         except Exception as exc:  # reported, not fatal: one case must not sink the map
             out.append(exc)
     return out
 
 
-def _onset(sc: C.StudyCase, settings: dict, solves: dict | None = None):
+def _onset(sc: C.StudyCase, settings: dict, solves: dict | None = None, a_guess: float | None = None):
     from coathertz.fem.method import FEMMethod
     from coathertz.fem.plastic.onset import yield_onset
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        return yield_onset(sc.case, FEMMethod(**settings), Yc=sc.params["Yc_Ys"] * YS, Ys=YS, solves=solves)
+        return yield_onset(sc.case, FEMMethod(**settings), Yc=sc.params["Yc_Ys"] * YS, Ys=YS, solves=solves,
+                           a_guess=a_guess)
 
 
 def plot(result: C.StudyResult, outdir) -> list:

@@ -205,7 +205,7 @@ def _solve(method: FEMMethod, case: ContactCase, solves: dict | None,
 
 def yield_onset(case: ContactCase, method: FEMMethod | None = None, Yc: float | None = None,
                 Ys: float | None = None, tol: float = 1e-3, max_solves: int = 8,
-                solves: dict | None = None) -> YieldOnset:
+                solves: dict | None = None, a_guess: float | None = None) -> YieldOnset:
     """Load ``W_y`` of first yield of ``case`` (its load is the first guess) and where it occurs.
 
     Parameters
@@ -224,6 +224,9 @@ def yield_onset(case: ContactCase, method: FEMMethod | None = None, Yc: float | 
         bodies, geometry) and ``method`` with other yield stresses: a load solved before is not
         solved again (the searches take the same steps until their yield stresses make them
         differ). ``None``: nothing shared.
+    a_guess
+        The contact radius at the case's load where known (a search started from another
+        mesh's answer): the first mesh is built around it (``FEMMethod.solve_full``).
     """
     from dataclasses import replace
 
@@ -231,7 +234,7 @@ def yield_onset(case: ContactCase, method: FEMMethod | None = None, Yc: float | 
     method = method or FEMMethod()
     similar = _self_similar(case)
     W = case.W
-    a_guess = None  # the contact radius at W predicted on the previous solve's mesh
+    # a_guess: the contact radius at W (given, then predicted on the previous solve's mesh)
     prev: tuple[float, float] | None = None  # (log W, log rho) of the previous solve
     for it in range(1, max_solves + 1):
         sv = _solve(method, replace(case, W=W), solves, a_guess)
