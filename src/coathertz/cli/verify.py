@@ -188,6 +188,15 @@ def run(args: argparse.Namespace) -> int:
                     figures[r.name] = plot_study(r, mod, figdir)
             t_studies = time.perf_counter()
             results.sort(key=lambda r: [m.NAME for m in mods].index(r.name))
+            # every result is stored now: the store is exported while the last figures render
+            try:
+                with writing(out / "store.csv", "--out"):
+                    store.export_csv(out / "store.csv")
+                with writing(out / "store.json", "--out"):
+                    store.export_json(out / "store.json")
+            except BaseException:
+                store.close()
+                raise
     except KeyboardInterrupt:
         print(f"coathertz verify: interrupted; {store.count()} results are in {store.path}; "
               "run the same command again to resume", file=sys.stderr)
@@ -200,20 +209,14 @@ def run(args: argparse.Namespace) -> int:
                                      "workers": args.scheduler or args.workers,
                                      "total_run_time": f"{total:.1f} s",
                                      "store": str(store.path)})
-    try:
-        with writing(out / "store.csv", "--out"):
-            store.export_csv(out / "store.csv")
-        with writing(out / "store.json", "--out"):
-            store.export_json(out / "store.json")
-    finally:
-        store.close()
+    store.close()
     with writing(out, "--out"):  # a full disk: the folder named, not a traceback
         files = write_report(results, out, prov, {m.NAME: m for m in mods}, baseline, notes,
                              figures=figures)
     print(f"all studies: {verdict_counts([c.verdict for r in results for c in r.claims])}")
     pages = time.perf_counter() - t0 - total
-    print(f"report: {files.html} (studies {t_studies - t0:.1f} s; their figures done "
-          f"{t0 + total - t_studies:.1f} s later; store export and pages {pages:.1f} s)")
+    print(f"report: {files.html} (studies {t_studies - t0:.1f} s; their figures and the store's "
+          f"export done {t0 + total - t_studies:.1f} s later; pages {pages:.1f} s)")
     if files.drift is not None:
         if files.drifted:
             print(f"regression: {len(files.drifted)} claim(s) moved beyond tolerance:")
