@@ -142,10 +142,14 @@ def coefficients(body: Body, grid: Grid, interface: str = "bonded") -> np.ndarra
     return K
 
 
+def case_quadrant(case: ContactCase, grid: Grid, interface: str = "bonded") -> np.ndarray:
+    """Quadrant coefficients of the pair (offsets ``0..n``): the bodies' compliances add."""
+    return coefficients(case.body1, grid, interface) + coefficients(case.body2, grid, interface)
+
+
 def case_coefficients(case: ContactCase, grid: Grid, interface: str = "bonded") -> np.ndarray:
     """Wrap-around (``2ny x 2nx``) coefficients of the pair: the bodies' compliances add."""
-    q = coefficients(case.body1, grid, interface) + coefficients(case.body2, grid, interface)
-    return circulant(q)
+    return circulant(case_quadrant(case, grid, interface))
 
 
 def initial_gap(case: ContactCase, grid: Grid) -> np.ndarray:
@@ -498,7 +502,7 @@ class FFTMethod:
         the cost of the coarse solves in transform pairs of ``grid``.
         """
         coarse = Grid(grid.nx // 2, grid.ny // 2, 2 * grid.dx, 2 * grid.dy)
-        kern = np.stack([case_coefficients(c, coarse, c.interface_for(self.interface)) for c in cases])
+        kern = np.stack([case_quadrant(c, coarse, c.interface_for(self.interface)) for c in cases])
         g0 = np.stack([initial_gap(c, coarse) for c in cases])
         if min(coarse.nx, coarse.ny) >= NESTED_MIN_N:  # nested in turn
             p0, cost = self._coarse_start(cases, coarse, be)
@@ -509,7 +513,7 @@ class FFTMethod:
                 ra, rb = estimate_axes(c)
                 p0.append(pressure_elliptical(X, Y, INIT_SCALE * ra, INIT_SCALE * rb, 1.0))
         sol = polonsky_keer(
-            Convolver(kern, be), g0, np.array([c.W for c in cases]), coarse.cell_area,
+            Convolver.from_quadrant(kern, be), g0, np.array([c.W for c in cases]), coarse.cell_area,
             tol=NESTED_TOL, max_iter=self.max_iter, p_init=np.stack(p0),
             precondition=self.precondition and min(coarse.nx, coarse.ny) >= PRECONDITION_COARSE_MIN_N,
             symmetric=True,
@@ -545,7 +549,7 @@ class FFTMethod:
                 if new is not None:  # start from the probe, interpolated to the new grid
                     p_c = [prolong_pressure(p_c[0], grid, new)]
                     probe_cost, moved, grid = cost, True, new
-        kern = np.stack([case_coefficients(c, grid, c.interface_for(self.interface)) for c in cases])
+        kern = np.stack([case_quadrant(c, grid, c.interface_for(self.interface)) for c in cases])
         g0 = np.stack([initial_gap(c, grid) for c in cases])
         W = np.array([c.W for c in cases])
         X, Y = np.meshgrid(grid.x, grid.y)
@@ -562,7 +566,7 @@ class FFTMethod:
         elif nested:
             p_init, nested_conv = self._coarse_start(cases, grid, be)
         t1 = time.perf_counter()
-        conv = Convolver(kern, be)
+        conv = Convolver.from_quadrant(kern, be)
         pre = bool(self.precondition)
         sol = polonsky_keer(
             conv, g0, W, grid.cell_area, tol=self.tol, max_iter=self.max_iter,
