@@ -322,9 +322,9 @@ class Convolver:
 
     def quarter(self, p, out):
         """``K * p`` on the quarter plane (``p``: ``(..., My, Mx)``, even about the centre
-        cell; :meth:`_apply_sym`), written into ``out``: ``(..., My, Mx)``, or
+        cell; the DCT-I convolution of ``_apply_sym``), written into ``out``: ``(..., My, Mx)``, or
         ``(..., ny//2 + 1, nx//2 + 1)`` to include the cells without mirror image (their
-        images at ``+n/2``; :func:`_unfold` makes the whole grid of it)."""
+        images at ``+n/2``; ``_unfold`` makes the whole grid of it)."""
         return self._apply_sym(p, self._sym_setup()[0], out)
 
     def precondition_quarter(self, r, out):
