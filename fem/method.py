@@ -393,7 +393,7 @@ class FEMMethod:
         """Like :meth:`solve`, also returning the model and the load path (for VTU output).
 
         ``a_guess``: the contact radius to build the first mesh around, where the caller knows a
-        better one than the layered Hertz estimate (:meth:`_predict_a`), e.g. a search over loads
+        better one than the layered Hertz estimate (``_predict_a``), e.g. a search over loads
         from its previous solve; the mesh is rebuilt around the computed radius as always if that
         falls outside the refined zone."""
         why = self._stack_refusal(case)

@@ -95,7 +95,7 @@ class FEModel:
 
     def quad_strain(self, u: np.ndarray) -> np.ndarray:
         """Strain ``[4, nel, nq]`` of the displacement part of ``u`` at the quadrature points (the
-        rectangle tables where they apply, else skfem's basis, :func:`forms.quad_strain`)."""
+        rectangle tables where they apply, else skfem's basis, :func:`~coathertz.fem.forms.quad_strain`)."""
         u = u[: self.n_u]
         if self.rect is None:
             return forms.quad_strain(self.basis, u)

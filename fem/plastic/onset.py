@@ -7,7 +7,7 @@ stress field scales with :math:`p_0 \propto W^{1/3}` (Hertz, Johnson 1985 eq 4.2
 :math:`W_y = W / \rho^3` (the next solve's load; one solve where the first guess is right). A
 coating with other elastic constants breaks the self-similarity: the next load is then the root
 of :math:`\rho = 1` on the mesh of the last solve, found by secant steps in ``log W`` with the
-contact solved again at trial loads on that solve's factorisation (:func:`_predict`; cheap: no
+contact solved again at trial loads on that solve's factorisation (``_predict``; cheap: no
 new mesh or factorisation), and each full solve at its own mesh checks :math:`|\rho - 1| <`
 ``tol`` (2-3 elastic solves in the quick study, against 4-5 with secant steps between full
 solves, which stay the fallback).
