@@ -116,6 +116,9 @@ class _Saving:
 
 _SAVING: _Saving | None = None
 _WRITING: str | None = None  # the figure :func:`save` is writing in this process (for its error line)
+#: A token of the drawing pass :func:`_write` is in (None outside one): within a pass nothing but
+#: matplotlib's drawing runs, so what it computes twice from equal inputs may be kept.
+_DRAWING: object | None = None
 
 #: Render processes allowed beyond ``jobs`` before :func:`save` waits for one: the caller goes on
 #: with its next study or figure while the operating system shares the CPUs between them.
@@ -191,14 +194,19 @@ def _write(fig, paths: Sequence[Path]) -> None:
     title = getattr(fig, "_suptitle", None)  # matplotlib keeps the suptitle's Text here
     if engine and title is not None:
         title.set_wrap(True)
-    with matplotlib.rc_context({"svg.hashsalt": "coathertz"}):
-        for p in paths:
-            svg = p.suffix == ".svg"
-            if engine and not svg and isinstance(fig.canvas, FigureCanvasAgg):
-                _write_png_drawn(fig, p)
-                continue
-            fig.savefig(p, dpi=None if svg else PNG_DPI, bbox_inches=None if engine else "tight",
-                        metadata={"Date": None} if svg else None)
+    global _DRAWING
+    try:
+        with matplotlib.rc_context({"svg.hashsalt": "coathertz"}):
+            for p in paths:
+                _DRAWING = object()  # a new drawing pass (no code of ours runs until it ends)
+                svg = p.suffix == ".svg"
+                if engine and not svg and isinstance(fig.canvas, FigureCanvasAgg):
+                    _write_png_drawn(fig, p)
+                    continue
+                fig.savefig(p, dpi=None if svg else PNG_DPI, bbox_inches=None if engine else "tight",
+                            metadata={"Date": None} if svg else None)
+    finally:
+        _DRAWING = None
 
 
 _SUPERSCRIPT = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
@@ -364,6 +372,7 @@ def _render_process_caches() -> None:
     4. A marker copied from another (every new tick copies the first tick's lines) is copied
        with its transforms, not deep-copied with its paths (which no marker changes)."""
     import matplotlib.text
+    from matplotlib.axis import Axis
     from matplotlib.backends.backend_agg import RendererAgg
     from matplotlib.font_manager import fontManager, get_font
     from matplotlib.markers import MarkerStyle
@@ -422,11 +431,69 @@ def _render_process_caches() -> None:
         self.__dict__ = state
         return None
 
+    update_ticks = Axis._update_ticks
+
+    def _update_ticks(self):
+        if _DRAWING is None:
+            return update_ticks(self)
+        key = _ticks_key(self)
+        kept = self.__dict__.get("_coathertz_ticks")
+        if kept is None or kept[0] != key:
+            ticks = update_ticks(self)
+            kept = self._coathertz_ticks = (_ticks_key(self), ticks)  # its new ticks counted
+        return list(kept[1])
+
+    Axis._update_ticks = _update_ticks
+    get_tick = Axis._get_tick
+
+    def _get_tick(self, major):
+        ticks = self.__dict__.get("majorTicks" if major else "minorTicks")
+        if ticks and type(ticks[0]) is getattr(self, "_tick_class", None):
+            return _copied_tick(ticks[0])
+        return get_tick(self, major)
+
+    Axis._get_tick = _get_tick
     RendererAgg._get_font_height_metrics = _get_font_height_metrics
     RendererAgg.__init__ = __init__
     matplotlib.text._get_text_metrics_with_cache = text_metrics
     MarkerStyle._set_marker = _set_marker
     RendererAgg._coathertz_caches = True
+
+
+def _copied_tick(tick):
+    """A copy of ``tick`` (a :class:`~matplotlib.axis.Tick` and its two marks, grid line and two
+    labels) sharing nothing its owner may change: each artist's attributes copied, each its own
+    callbacks, font properties and markers (see :func:`_render_process_caches`)."""
+    from matplotlib.cbook import CallbackRegistry
+    from matplotlib.markers import MarkerStyle
+
+    def copied(artist):
+        new = object.__new__(type(artist))
+        new.__dict__.update(artist.__dict__)
+        new._callbacks = CallbackRegistry(signals=["pchanged"])
+        return new
+
+    new = copied(tick)
+    for name in ("tick1line", "tick2line", "gridline"):
+        line = copied(getattr(tick, name))
+        line._marker = MarkerStyle(line._marker)
+        setattr(new, name, line)
+    for name in ("label1", "label2"):
+        label = copied(getattr(tick, name))
+        label._fontproperties = label._fontproperties.copy()
+        setattr(new, name, label)
+    return new
+
+
+def _ticks_key(axis) -> tuple:
+    """What the ticks an axis draws depend on within one drawing pass (see
+    :func:`_render_process_caches`): the pass, its view, its panel's place and size in pixels (a
+    locator may choose its number of ticks by the length of the axis), its locators and
+    formatters, and how many ticks it has made."""
+    major, minor = axis.major, axis.minor
+    return (_DRAWING, *axis.get_view_interval(), *axis.axes.bbox.bounds, axis.get_figure(root=True).dpi,
+            id(major.locator), id(major.formatter), id(minor.locator), id(minor.formatter),
+            len(axis.majorTicks), len(axis.minorTicks))
 
 
 #: zlib level of the PNG files: 3 writes the report's opaque RGB figures in about 60 % of the
@@ -487,10 +554,18 @@ def _warm_up() -> None:
     """Draw, once in this process, a small figure with what the report's figures have (a tight
     layout, mathtext, log and linear ticks, a legend, a colour bar, text of several sizes), so
     that every render process forked afterwards starts with matplotlib's one-time work done (the
-    mathtext grammar, the fonts loaded, the tick machinery): about 0.3 CPU-s each, once here."""
+    mathtext grammar, the fonts loaded, the tick machinery): about 0.3 CPU-s each, once here.
+    The modules the figures use that nothing imports before (pyplot, contours, triangulations,
+    PIL's image plug-ins) are imported here too: about 0.1 CPU-s each render process."""
     import matplotlib
 
     matplotlib.use("Agg", force=False)
+    import contourpy  # noqa: F401
+    import matplotlib.pyplot
+    import matplotlib.tri
+    from PIL import Image
+
+    Image.preinit()  # the plug-ins PIL imports at its first save
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
