@@ -370,7 +370,16 @@ def _render_process_caches() -> None:
     3. Mathtext is parsed once per string, resolution and font for the process (matplotlib
        keeps the parses per renderer).
     4. A marker copied from another (every new tick copies the first tick's lines) is copied
-       with its transforms, not deep-copied with its paths (which no marker changes)."""
+       with its transforms, not deep-copied with its paths (which no marker changes).
+    5. Within one drawing pass (:data:`_DRAWING`: the layout engine's measuring, then the
+       painting), an axis' ticks (locations, labels, which are in view) are computed once per
+       view and place of its panel (:func:`_ticks_key`), not at every request (about 11 per
+       axis: its bounding box, its spines', its label's and title's places, its siblings'),
+       and a text's layout once per string, font, angle and alignment.
+    6. A new tick is a copy of the axis' first (:func:`_copied_tick`) instead of one built from
+       the rcParams (matplotlib then copies the first tick's properties to it either way).
+    7. A wrapped text (the figures' titles) finds its line ends by bisection
+       (:func:`_wrapped_text`)."""
     import matplotlib.text
     from matplotlib.axis import Axis
     from matplotlib.backends.backend_agg import RendererAgg
@@ -453,6 +462,21 @@ def _render_process_caches() -> None:
         return get_tick(self, major)
 
     Axis._get_tick = _get_tick
+    get_layout = matplotlib.text.Text._get_layout
+
+    def _get_layout(self, renderer):
+        if _DRAWING is None or self._wrap or self._transform_rotates_text:  # these: by its place
+            return get_layout(self, renderer)
+        key = (_DRAWING, id(renderer), self.get_figure(root=True).dpi, self._text, hash(self._fontproperties),
+               self._rotation, self._rotation_mode, self._horizontalalignment, self._verticalalignment,
+               self._multialignment, self._linespacing, self._usetex, self._parse_math)
+        kept = self.__dict__.get("_coathertz_layout")
+        if kept is None or kept[0] != key:
+            kept = self._coathertz_layout = (key, get_layout(self, renderer))
+        return kept[1]
+
+    matplotlib.text.Text._get_layout = _get_layout
+    matplotlib.text.Text._get_wrapped_text = _wrapped_text
     RendererAgg._get_font_height_metrics = _get_font_height_metrics
     RendererAgg.__init__ = __init__
     matplotlib.text._get_text_metrics_with_cache = text_metrics
@@ -483,6 +507,44 @@ def _copied_tick(tick):
         label._fontproperties = label._fontproperties.copy()
         setattr(new, name, label)
     return new
+
+
+def _wrapped_text(text) -> str:
+    """:meth:`matplotlib.text.Text._get_wrapped_text` (a wrapped text's lines, each as many
+    words as fit the figure's width) finding each line's end by bisection (about 5 widths
+    measured a line instead of one per word: each a new string to lay out) where the words'
+    widths grow with their number (a line without mathtext); the same lines.
+    Lines with ``$`` are measured word by word, as matplotlib does (a word that opens or closes
+    mathtext can make the longer string the narrower)."""
+    if not text.get_wrap() or text.get_usetex():
+        return text.get_text()
+    line_width = text._get_wrap_line_width()
+    lines = []
+    for unwrapped in text.get_text().split("\n"):
+        words = unwrapped.split(" ")
+        monotonic = "$" not in unwrapped
+        while words:
+            if len(words) == 1:
+                lines.append(words.pop(0))
+                continue
+            if monotonic:  # the first i in [2, n] whose i words are too wide, else n + 1
+                lo, hi = 2, len(words) + 1
+                while lo < hi:
+                    mid = (lo + hi) // 2
+                    if text._get_rendered_text_width(" ".join(words[:mid])) > line_width:
+                        hi = mid
+                    else:
+                        lo = mid + 1
+                end = lo - 1
+            else:
+                end = len(words)
+                for i in range(2, len(words) + 1):
+                    if text._get_rendered_text_width(" ".join(words[:i])) > line_width:
+                        end = i - 1
+                        break
+            lines.append(" ".join(words[:end]))
+            words = words[end:]
+    return "\n".join(lines)
 
 
 def _ticks_key(axis) -> tuple:
@@ -516,9 +578,9 @@ def _write_png_drawn(fig, path: Path) -> None:
 
     fig.set_dpi(PNG_DPI)
     fig.canvas.draw()
-    rgba = np.asarray(fig.canvas.buffer_rgba())
-    opaque = bool((rgba[..., 3] == 255).all())
-    image = Image.fromarray(np.ascontiguousarray(rgba[..., :3]) if opaque else rgba)  # RGB, RGBA
+    image = Image.fromarray(np.asarray(fig.canvas.buffer_rgba()))
+    if image.getchannel("A").getextrema() == (255, 255):  # opaque: RGB (PIL drops alpha fastest)
+        image = image.convert("RGB")
     info = PngInfo()
     info.add_text("Software", f"Matplotlib version{matplotlib.__version__}, https://matplotlib.org/")
     image.save(path, format="png", dpi=(PNG_DPI, PNG_DPI), pnginfo=info, compress_level=PNG_COMPRESSION)

@@ -300,7 +300,9 @@ def _rich(label: str, engine: bool = True):
     fig.colorbar(im, ax=ax1, label="error [%]")
     ax1.set_title(label, fontsize=9, fontweight="bold")
     if engine:
-        fig.suptitle(f"{label}: a title that wraps " * 4, fontsize=10)
+        # wrapped: by bisection (plain text), word by word (with mathtext)
+        math = r"with $\nu_s = 0.3$ in it" if label == "second" else ""
+        fig.suptitle(f"{label}: a title that wraps " * 4 + math, fontsize=10)
         fig.set_layout_engine("tight")
     else:
         fig.suptitle(f"{label}: cropped", fontsize=10)
