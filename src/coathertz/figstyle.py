@@ -465,11 +465,11 @@ def _render_process_caches() -> None:
     get_layout = matplotlib.text.Text._get_layout
 
     def _get_layout(self, renderer):
-        if _DRAWING is None or self._wrap or self._transform_rotates_text:  # these: by its place
+        if _DRAWING is None or self._wrap or getattr(self, "_transform_rotates_text", False):  # by its place
             return get_layout(self, renderer)
-        key = (_DRAWING, id(renderer), self.get_figure(root=True).dpi, self._text, hash(self._fontproperties),
+        key = (_DRAWING, id(renderer), getattr(renderer, "dpi", None), self._text, hash(self._fontproperties),
                self._rotation, self._rotation_mode, self._horizontalalignment, self._verticalalignment,
-               self._multialignment, self._linespacing, self._usetex, self._parse_math)
+               self._multialignment, self._linespacing, self._usetex, getattr(self, "_parse_math", True))
         kept = self.__dict__.get("_coathertz_layout")
         if kept is None or kept[0] != key:
             kept = self._coathertz_layout = (key, get_layout(self, renderer))
@@ -614,11 +614,11 @@ def _glyph_drawing(renderer_class) -> None:
 
 def _ticks_key(axis) -> tuple:
     """What the ticks an axis draws depend on within one drawing pass (see
-    :func:`_render_process_caches`): the pass, its view, its panel's place and size in pixels (a
-    locator may choose its number of ticks by the length of the axis), its locators and
-    formatters, and how many ticks it has made."""
+    :func:`_render_process_caches`): the pass, its view, its panel's place and size in pixels (at
+    the figure's resolution; a locator may choose its number of ticks by the length of the axis),
+    its locators and formatters, and how many ticks it has made."""
     major, minor = axis.major, axis.minor
-    return (_DRAWING, *axis.get_view_interval(), *axis.axes.bbox.bounds, axis.get_figure(root=True).dpi,
+    return (_DRAWING, *axis.get_view_interval(), *axis.axes.bbox.bounds,
             id(major.locator), id(major.formatter), id(minor.locator), id(minor.formatter),
             len(axis.majorTicks), len(axis.minorTicks))
 
