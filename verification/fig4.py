@@ -176,10 +176,12 @@ def plot(result: C.StudyResult, outdir) -> list:
                  "from the bars' uncertainty; grey: H <= 0.02, where a bar within a small fraction of 1 "
                  "makes "
                  "alpha ill-conditioned (large alpha_a)", fontsize=8.5)
-    fig.tight_layout()
-    if len(Es) > 8:  # too many curves for a legend: a colour bar keyed by E
+    if len(Es) <= 8:
+        fig.set_layout_engine("tight")  # laid out when drawn, in the render process
+    else:  # too many curves for a legend: a colour bar keyed by E, beside the laid-out panels
         import matplotlib as mpl
 
+        fig.tight_layout()
         sm = mpl.cm.ScalarMappable(norm=mpl.colors.Normalize(0, len(Es) - 1), cmap="viridis")
         shown = (0.25, 1 / 3, 0.8, 1, 2, 3, 4)
         ticks = [i for i, E in enumerate(Es) if any(math.isclose(E, t) for t in shown)]

@@ -837,7 +837,7 @@ def _plot_zones(result: C.StudyResult, zones: dict, outdir) -> list:
     fig.suptitle(
         f"Plastic zone after unloading (FE, rigid sphere R = {R * 1e3:g} mm); {result.resolution}", fontsize=9
     )
-    fig.tight_layout()
+    fig.set_layout_engine("tight")  # laid out when drawn, in the render process
     return C.save(fig, outdir, "indentation_zone")
 
 
@@ -891,5 +891,5 @@ def _plot_curves(result: C.StudyResult, curves: dict, outdir) -> list:
         f"Kogut & Etsion (2002), Jackson & Green (2005); {result.resolution}",
         fontsize=9,
     )
-    fig.tight_layout(rect=(0, 0.12, 1, 0.95))
+    fig.set_layout_engine("tight", rect=(0, 0.12, 1, 0.95))  # laid out when drawn, in the render process
     return C.save(fig, outdir, "indentation_curves")

@@ -116,6 +116,9 @@ class _Saving:
 
 _SAVING: _Saving | None = None
 _WRITING: str | None = None  # the figure :func:`save` is writing in this process (for its error line)
+#: A token of the drawing pass :func:`_write` is in (None outside one): within a pass nothing but
+#: matplotlib's drawing runs, so what it computes twice from equal inputs may be kept.
+_DRAWING: object | None = None
 
 #: Render processes allowed beyond ``jobs`` before :func:`save` waits for one: the caller goes on
 #: with its next study or figure while the operating system shares the CPUs between them.
@@ -191,14 +194,19 @@ def _write(fig, paths: Sequence[Path]) -> None:
     title = getattr(fig, "_suptitle", None)  # matplotlib keeps the suptitle's Text here
     if engine and title is not None:
         title.set_wrap(True)
-    with matplotlib.rc_context({"svg.hashsalt": "coathertz"}):
-        for p in paths:
-            svg = p.suffix == ".svg"
-            if engine and not svg and isinstance(fig.canvas, FigureCanvasAgg):
-                _write_png_drawn(fig, p)
-                continue
-            fig.savefig(p, dpi=None if svg else PNG_DPI, bbox_inches=None if engine else "tight",
-                        metadata={"Date": None} if svg else None)
+    global _DRAWING
+    try:
+        with matplotlib.rc_context({"svg.hashsalt": "coathertz"}):
+            for p in paths:
+                _DRAWING = object()  # a new drawing pass (no code of ours runs until it ends)
+                svg = p.suffix == ".svg"
+                if engine and not svg and isinstance(fig.canvas, FigureCanvasAgg):
+                    _write_png_drawn(fig, p)
+                    continue
+                fig.savefig(p, dpi=None if svg else PNG_DPI, bbox_inches=None if engine else "tight",
+                            metadata={"Date": None} if svg else None)
+    finally:
+        _DRAWING = None
 
 
 _SUPERSCRIPT = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
@@ -362,8 +370,18 @@ def _render_process_caches() -> None:
     3. Mathtext is parsed once per string, resolution and font for the process (matplotlib
        keeps the parses per renderer).
     4. A marker copied from another (every new tick copies the first tick's lines) is copied
-       with its transforms, not deep-copied with its paths (which no marker changes)."""
+       with its transforms, not deep-copied with its paths (which no marker changes).
+    5. Within one drawing pass (:data:`_DRAWING`: the layout engine's measuring, then the
+       painting), an axis' ticks (locations, labels, which are in view) are computed once per
+       view and place of its panel (:func:`_ticks_key`), not at every request (about 11 per
+       axis: its bounding box, its spines', its label's and title's places, its siblings'),
+       and a text's layout once per string, font, angle and alignment.
+    6. A new tick is a copy of the axis' first (:func:`_copied_tick`) instead of one built from
+       the rcParams (matplotlib then copies the first tick's properties to it either way).
+    7. A wrapped text (the figures' titles) finds its line ends by bisection
+       (:func:`_wrapped_text`)."""
     import matplotlib.text
+    from matplotlib.axis import Axis
     from matplotlib.backends.backend_agg import RendererAgg
     from matplotlib.font_manager import fontManager, get_font
     from matplotlib.markers import MarkerStyle
@@ -422,11 +440,187 @@ def _render_process_caches() -> None:
         self.__dict__ = state
         return None
 
+    update_ticks = Axis._update_ticks
+
+    def _update_ticks(self):
+        if _DRAWING is None:
+            return update_ticks(self)
+        key = _ticks_key(self)
+        kept = self.__dict__.get("_coathertz_ticks")
+        if kept is None or kept[0] != key:
+            ticks = update_ticks(self)
+            kept = self._coathertz_ticks = (_ticks_key(self), ticks)  # its new ticks counted
+        return list(kept[1])
+
+    Axis._update_ticks = _update_ticks
+    get_tick = Axis._get_tick
+
+    def _get_tick(self, major):
+        ticks = self.__dict__.get("majorTicks" if major else "minorTicks")
+        if ticks and type(ticks[0]) is getattr(self, "_tick_class", None):
+            return _copied_tick(ticks[0])
+        return get_tick(self, major)
+
+    Axis._get_tick = _get_tick
+    get_layout = matplotlib.text.Text._get_layout
+
+    def _get_layout(self, renderer):
+        if _DRAWING is None or self._wrap or getattr(self, "_transform_rotates_text", False):  # by its place
+            return get_layout(self, renderer)
+        key = (_DRAWING, id(renderer), getattr(renderer, "dpi", None), self._text, hash(self._fontproperties),
+               self._rotation, self._rotation_mode, self._horizontalalignment, self._verticalalignment,
+               self._multialignment, self._linespacing, self._usetex, getattr(self, "_parse_math", True))
+        kept = self.__dict__.get("_coathertz_layout")
+        if kept is None or kept[0] != key:
+            kept = self._coathertz_layout = (key, get_layout(self, renderer))
+        return kept[1]
+
+    matplotlib.text.Text._get_layout = _get_layout
+    matplotlib.text.Text._get_wrapped_text = _wrapped_text
+    if hasattr(RendererAgg, "_draw_text_glyphs_and_boxes"):  # matplotlib >= 3.11: glyph by glyph
+        _glyph_drawing(RendererAgg)
     RendererAgg._get_font_height_metrics = _get_font_height_metrics
     RendererAgg.__init__ = __init__
     matplotlib.text._get_text_metrics_with_cache = text_metrics
     MarkerStyle._set_marker = _set_marker
     RendererAgg._coathertz_caches = True
+
+
+def _copied_tick(tick):
+    """A copy of ``tick`` (a :class:`~matplotlib.axis.Tick` and its two marks, grid line and two
+    labels) sharing nothing its owner may change: each artist's attributes copied, each its own
+    callbacks, font properties and markers (see :func:`_render_process_caches`)."""
+    from matplotlib.cbook import CallbackRegistry
+    from matplotlib.markers import MarkerStyle
+
+    def copied(artist):
+        new = object.__new__(type(artist))
+        new.__dict__.update(artist.__dict__)
+        new._callbacks = CallbackRegistry(signals=["pchanged"])
+        return new
+
+    new = copied(tick)
+    for name in ("tick1line", "tick2line", "gridline"):
+        line = copied(getattr(tick, name))
+        line._marker = MarkerStyle(line._marker)
+        setattr(new, name, line)
+    for name in ("label1", "label2"):
+        label = copied(getattr(tick, name))
+        label._fontproperties = label._fontproperties.copy()
+        setattr(new, name, label)
+    return new
+
+
+def _wrapped_text(text) -> str:
+    """:meth:`matplotlib.text.Text._get_wrapped_text` (a wrapped text's lines, each as many
+    words as fit the figure's width) finding each line's end by bisection (about 5 widths
+    measured a line instead of one per word: each a new string to lay out) where the words'
+    widths grow with their number (a line without mathtext); the same lines.
+    Lines with ``$`` are measured word by word, as matplotlib does (a word that opens or closes
+    mathtext can make the longer string the narrower)."""
+    if not text.get_wrap() or text.get_usetex():
+        return text.get_text()
+    line_width = text._get_wrap_line_width()
+    lines = []
+    for unwrapped in text.get_text().split("\n"):
+        words = unwrapped.split(" ")
+        monotonic = "$" not in unwrapped
+        while words:
+            if len(words) == 1:
+                lines.append(words.pop(0))
+                continue
+            if monotonic:  # the first i in [2, n] whose i words are too wide, else n + 1
+                lo, hi = 2, len(words) + 1
+                while lo < hi:
+                    mid = (lo + hi) // 2
+                    if text._get_rendered_text_width(" ".join(words[:mid])) > line_width:
+                        hi = mid
+                    else:
+                        lo = mid + 1
+                end = lo - 1
+            else:
+                end = len(words)
+                for i in range(2, len(words) + 1):
+                    if text._get_rendered_text_width(" ".join(words[:i])) > line_width:
+                        end = i - 1
+                        break
+            lines.append(" ".join(words[:end]))
+            words = words[end:]
+    return "\n".join(lines)
+
+
+def _glyph_drawing(renderer_class) -> None:
+    """Let the Agg renderer (matplotlib >= 3.11, which draws a text glyph by glyph) keep the
+    glyphs and places it lays a plain string out to, per string, font properties and resolution
+    (a tick label drawn in every panel: laid out once), and compute a text's glyph matrix once
+    per text instead of once per glyph; the same calls to FreeType, so the same pixels
+    (see :func:`_render_process_caches`)."""
+    import math as _math
+
+    from matplotlib.backends.backend_agg import get_hinting_flag
+    from matplotlib.ft2font import RenderMode
+
+    draw_boxes = renderer_class._draw_text_glyphs_and_boxes
+    draw_text = renderer_class.draw_text
+    layouts: dict = {}
+
+    def _draw_text_glyphs_and_boxes(self, gc, x, y, angle, glyphs, boxes):
+        cos = _math.cos(_math.radians(angle))
+        sin = _math.sin(_math.radians(angle))
+        load_flags = get_hinting_flag()
+        antialiased = gc.get_antialiased()
+        mode = RenderMode.NORMAL if antialiased else RenderMode.MONO
+        height, top = self.height, int(self.height)
+        draw_image = self._renderer.draw_text_image
+        matrices: dict = {}
+        for font, size, glyph_index, slant, extend, dx, dy in glyphs:  # dy is upwards
+            font.set_size(size, self.dpi)
+            matrix = matrices.get((slant, extend))
+            if matrix is None:
+                matrix = matrices[slant, extend] = (0x10000 * np.array([[cos, -sin], [sin, cos]])
+                                                    @ [[extend, extend * slant], [0, 1]]).round().astype(int)
+            font._set_transform(matrix, [round(0x40 * (x + dx * cos - dy * sin)),
+                                         round(0x40 * (height - y + dx * sin + dy * cos))])
+            bitmap = font._render_glyph(glyph_index, load_flags, mode)
+            buffer = bitmap.buffer
+            if not antialiased:
+                buffer *= 0xff
+            draw_image(buffer, bitmap.left, top - bitmap.top + buffer.shape[0], 0, gc)
+        if boxes:
+            draw_boxes(self, gc, x, y, angle, (), boxes)
+
+    def draw_text_kept(self, gc, x, y, s, prop, angle, ismath=False, mtext=None):
+        if ismath:
+            return draw_text(self, gc, x, y, s, prop, angle, ismath=ismath, mtext=mtext)
+        features = mtext.get_fontfeatures() if mtext is not None else None
+        language = mtext.get_language() if mtext is not None else None
+        key = (s, hash(prop), self.dpi, get_hinting_flag(), features, language)
+        try:
+            items = layouts.get(key)
+        except TypeError:  # features or language not hashable
+            return draw_text(self, gc, x, y, s, prop, angle, ismath=ismath, mtext=mtext)
+        font = self._prepare_font(prop)
+        if items is None:
+            items = layouts[key] = [(it.ft_object, it.glyph_index, it.x, it.y) for it in font._layout(
+                s, flags=get_hinting_flag(), features=features, language=language)]
+        size = prop.get_size_in_points()
+        glyphs = ((f, size, g, 0, 1, gx, gy) for f, g, gx, gy in items)
+        self._draw_text_glyphs_and_boxes(gc, x, y, angle, glyphs, [])
+        return None
+
+    renderer_class._draw_text_glyphs_and_boxes = _draw_text_glyphs_and_boxes
+    renderer_class.draw_text = draw_text_kept
+
+
+def _ticks_key(axis) -> tuple:
+    """What the ticks an axis draws depend on within one drawing pass (see
+    :func:`_render_process_caches`): the pass, its view, its panel's place and size in pixels (at
+    the figure's resolution; a locator may choose its number of ticks by the length of the axis),
+    its locators and formatters, and how many ticks it has made."""
+    major, minor = axis.major, axis.minor
+    return (_DRAWING, *axis.get_view_interval(), *axis.axes.bbox.bounds,
+            id(major.locator), id(major.formatter), id(minor.locator), id(minor.formatter),
+            len(axis.majorTicks), len(axis.minorTicks))
 
 
 #: zlib level of the PNG files: 3 writes the report's opaque RGB figures in about 60 % of the
@@ -449,9 +643,9 @@ def _write_png_drawn(fig, path: Path) -> None:
 
     fig.set_dpi(PNG_DPI)
     fig.canvas.draw()
-    rgba = np.asarray(fig.canvas.buffer_rgba())
-    opaque = bool((rgba[..., 3] == 255).all())
-    image = Image.fromarray(np.ascontiguousarray(rgba[..., :3]) if opaque else rgba)  # RGB, RGBA
+    image = Image.fromarray(np.asarray(fig.canvas.buffer_rgba()))
+    if image.getchannel("A").getextrema() == (255, 255):  # opaque: RGB (PIL drops alpha fastest)
+        image = image.convert("RGB")
     info = PngInfo()
     info.add_text("Software", f"Matplotlib version{matplotlib.__version__}, https://matplotlib.org/")
     image.save(path, format="png", dpi=(PNG_DPI, PNG_DPI), pnginfo=info, compress_level=PNG_COMPRESSION)
@@ -487,10 +681,18 @@ def _warm_up() -> None:
     """Draw, once in this process, a small figure with what the report's figures have (a tight
     layout, mathtext, log and linear ticks, a legend, a colour bar, text of several sizes), so
     that every render process forked afterwards starts with matplotlib's one-time work done (the
-    mathtext grammar, the fonts loaded, the tick machinery): about 0.3 CPU-s each, once here."""
+    mathtext grammar, the fonts loaded, the tick machinery): about 0.3 CPU-s each, once here.
+    The modules the figures use that nothing imports before (pyplot, contours, triangulations,
+    PIL's image plug-ins) are imported here too: about 0.1 CPU-s each render process."""
     import matplotlib
 
     matplotlib.use("Agg", force=False)
+    import contourpy  # noqa: F401
+    import matplotlib.pyplot
+    import matplotlib.tri
+    from PIL import Image
+
+    Image.preinit()  # the plug-ins PIL imports at its first save
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 

@@ -274,13 +274,21 @@ def test_log_axes_make_only_the_ticks_in_view(tmp_path):
     assert len(drawn[0]) == 20 and made[0] > 20 and made[1] == 20, (drawn, made)
 
 
-def _rich(label: str):
+def _rich(label: str, engine: bool = True):
     """A figure with what the render process's caches keep: text of several sizes and fonts,
-    mathtext, log ticks, markers (plain, open, rotated), a colour bar, a legend."""
+    mathtext, log ticks (many: ticks copied from the first), ticks changed after they were made,
+    markers (plain, open, rotated), a colour bar, a legend; without ``engine`` a third panel
+    sharing the first's y-axis and no layout engine (cropped: two drawing passes)."""
     from matplotlib.markers import MarkerStyle
 
-    fig, axes = figure(2)
-    ax0, ax1 = axes[0]
+    fig, axes = figure(2 if engine else 3, sharey=not engine)
+    ax0, ax1 = axes[0][:2]
+    if not engine:
+        ax2 = axes[0][2]
+        ax2.plot([0.5, 2.0, 7.0], [1.0, 3.0, 2.0], "s-", ms=3, label="shared")
+        ax2.get_xticklabels()  # ticks made before the parameters change
+        ax2.tick_params(axis="x", labelrotation=40, labelsize=6, direction="in", length=6)
+        ax2.set_xlabel("t [s]")
     x = [1e-2, 1e-1, 1.0, 10.0]
     ax0.plot(x, [1.0, 2.0, 4.0, 3.0], "o", mfc="none", ms=7, label=r"$\delta/\delta_{0s}$")
     ax0.plot(x, [2.0, 1.0, 3.0, 5.0], marker=MarkerStyle("^").rotated(deg=30), ls="none", label="rotated")
@@ -291,8 +299,13 @@ def _rich(label: str):
     im = ax1.pcolormesh([[0.0, 1.0], [2.0, 3.0]])
     fig.colorbar(im, ax=ax1, label="error [%]")
     ax1.set_title(label, fontsize=9, fontweight="bold")
-    fig.suptitle(f"{label}: a title that wraps " * 4, fontsize=10)
-    fig.set_layout_engine("tight")
+    if engine:
+        # wrapped: by bisection (plain text), word by word (with mathtext)
+        math = r"with $\nu_s = 0.3$ in it" if label == "second" else ""
+        fig.suptitle(f"{label}: a title that wraps " * 4 + math, fontsize=10)
+        fig.set_layout_engine("tight")
+    else:
+        fig.suptitle(f"{label}: cropped", fontsize=10)
     return fig
 
 
@@ -302,10 +315,11 @@ def test_render_process_caches_keep_the_pixels(tmp_path):
     here without the caches."""
     from coathertz.figstyle import draw_elsewhere
 
-    labels = ["first", "second", "first"]  # the third repeats the first's strings: cache hits
-    serial = [save(_rich(s), tmp_path / "one", f"f{i}")[0] for i, s in enumerate(labels)]
+    # the third repeats the first's strings: cache hits; the fourth has no layout engine
+    labels = [("first", True), ("second", True), ("first", True), ("first", False)]
+    serial = [save(_rich(*s), tmp_path / "one", f"f{i}")[0] for i, s in enumerate(labels)]
     with saving(jobs=2):
-        forked = draw_elsewhere("rich", lambda: [save(_rich(s), tmp_path / "two", f"f{i}")[0]
+        forked = draw_elsewhere("rich", lambda: [save(_rich(*s), tmp_path / "two", f"f{i}")[0]
                                                  for i, s in enumerate(labels)])
     assert [p.name for p in forked] == [p.name for p in serial]
     for a, b in zip(serial, forked, strict=True):
