@@ -354,6 +354,21 @@ def _prepare(fig) -> None:
     _log_ticks_in_view(fig)
 
 
+#: The matplotlib releases (major.minor) on which the render processes' caches
+#: (:func:`_render_process_caches`) were checked to leave every pixel as it was
+#: (``tests/verification/test_figure_saving.py``). They replace private parts of matplotlib
+#: (its text layout, tick making and glyph drawing): on any other release the render processes
+#: draw with matplotlib as it is, slower but safe. Add a release here only after that test
+#: passed on it.
+CACHED_MATPLOTLIB = ("3.11",)
+
+
+def caches_apply(version: str) -> bool:
+    """Whether the render processes' caches are used with matplotlib ``version`` (a release of
+    :data:`CACHED_MATPLOTLIB`, any patch level)."""
+    return ".".join(version.split(".")[:2]) in CACHED_MATPLOTLIB
+
+
 def _render_process_caches() -> None:
     """In a render process (a process of ours alone, which only draws figures and exits), let
     matplotlib keep what it measures of text and markers for every figure instead of measuring
@@ -387,7 +402,7 @@ def _render_process_caches() -> None:
     from matplotlib.markers import MarkerStyle
     from matplotlib.mathtext import MathTextParser
 
-    if getattr(RendererAgg, "_coathertz_caches", False):
+    if getattr(RendererAgg, "_coathertz_caches", False) or not caches_apply(matplotlib.__version__):
         return
     heights: dict = {}
 

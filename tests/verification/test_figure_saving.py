@@ -324,3 +324,14 @@ def test_render_process_caches_keep_the_pixels(tmp_path):
     assert [p.name for p in forked] == [p.name for p in serial]
     for a, b in zip(serial, forked, strict=True):
         assert a.read_bytes() == b.read_bytes(), b
+
+
+def test_render_caches_only_on_checked_matplotlib():
+    """The caches replace private parts of matplotlib: used only on the releases the pixel test
+    above was run on, any patch level; another release draws with matplotlib as it is."""
+    from coathertz.figstyle import CACHED_MATPLOTLIB, caches_apply
+
+    for release in CACHED_MATPLOTLIB:
+        assert caches_apply(release + ".0") and caches_apply(release + ".7rc1")
+    assert not caches_apply("3.7.5")
+    assert not caches_apply("99.0.0")
