@@ -25,7 +25,7 @@ The FE solves do not go through the method registry and the result store (they a
 :class:`coathertz.verification.StudyCase`, ``Claim``, ``StudyResult``, ``figure`` and
 ``save``. Resolutions: ``tiny`` 2 cases (tests), ``quick`` 5 cases (E = 1/4 and 4 at H = 0.3,
 Yc/Ys = 1 and 3) at 12 elements across a (~3 s CPU in one process: 2-4 solves per search to
-:data:`ONSET_TOL`), ``full``
+``ONSET_TOL``), ``full``
 5 E x 6 H x 3 Yc/Ys = 90 cases at 20 elements across a.
 """
 
