@@ -263,9 +263,10 @@ def _onset_job(jobs: list[tuple]) -> list:
 
 #: The onset searches stop at ``|max sigma_vM / Y - 1| <`` this. ``W_y`` grows about as the
 #: cube of the stress, so the search leaves up to ``3 ONSET_TOL`` relative in ``W_y``; the map's
-#: mesh uncertainty (twice the change from 12 to 24 elements across a, about 0.6 % relative for
-#: the worst case) must not be made of that: with ``yield_onset``'s default 1e-3 the two searches
-#: could account for all of it (about 6e-4 relative in ``W_y/W_ys`` found between two starts).
+#: mesh uncertainty (twice the change from 12 to 24 elements across a, about 1.1 % relative for
+#: the worst case) must not be made of that: with ``yield_onset``'s default 1e-3 each search
+#: could move ``W_y`` by 0.3 %, and the quick map's uncertainty came out 6.8e-4 or 7.7e-4 (of
+#: ``W_y/W_ys`` = 0.068) as the refined search started at ``W_ys`` or at the coarse ``W_y``.
 ONSET_TOL = 1e-4
 
 

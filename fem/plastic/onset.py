@@ -9,8 +9,8 @@ coating with other elastic constants breaks the self-similarity: the next load i
 of :math:`\rho = 1` on the mesh of the last solve, found by secant steps in ``log W`` with the
 contact solved again at trial loads on that solve's factorisation (``_predict``; cheap: no
 new mesh or factorisation), and each full solve at its own mesh checks :math:`|\rho - 1| <`
-``tol`` (2-3 elastic solves in the quick study, against 4-5 with secant steps between full
-solves, which stay the fallback).
+``tol`` (at ``tol`` = 1e-3, 2-3 elastic solves per search in the quick study, against 4-5 with
+secant steps between full solves, which stay the fallback).
 
 The maximum is located in two stages: the largest quadrature-point value, then a 21 x 21 probe
 grid (two element sizes wide) of the per-region :math:`L^2`-projected stress field

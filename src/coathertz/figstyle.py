@@ -357,7 +357,7 @@ def _prepare(fig) -> None:
 #: The matplotlib releases (major.minor) on which the render processes' caches
 #: (:func:`_render_process_caches`) were checked to leave every pixel as it was
 #: (``tests/verification/test_figure_saving.py``). They replace private parts of matplotlib
-#: (its text layout, tick making and glyph drawing): on any other release the render processes
+#: (its text layout and tick making): on any other release the render processes
 #: draw with matplotlib as it is, slower but safe. Add a release here only after that test
 #: passed on it.
 CACHED_MATPLOTLIB = ("3.11",)
@@ -492,8 +492,6 @@ def _render_process_caches() -> None:
 
     matplotlib.text.Text._get_layout = _get_layout
     matplotlib.text.Text._get_wrapped_text = _wrapped_text
-    if hasattr(RendererAgg, "_draw_text_glyphs_and_boxes"):  # matplotlib >= 3.11: glyph by glyph
-        _glyph_drawing(RendererAgg)
     RendererAgg._get_font_height_metrics = _get_font_height_metrics
     RendererAgg.__init__ = __init__
     matplotlib.text._get_text_metrics_with_cache = text_metrics
@@ -562,69 +560,6 @@ def _wrapped_text(text) -> str:
             lines.append(" ".join(words[:end]))
             words = words[end:]
     return "\n".join(lines)
-
-
-def _glyph_drawing(renderer_class) -> None:
-    """Let the Agg renderer (matplotlib >= 3.11, which draws a text glyph by glyph) keep the
-    glyphs and places it lays a plain string out to, per string, font properties and resolution
-    (a tick label drawn in every panel: laid out once), and compute a text's glyph matrix once
-    per text instead of once per glyph; the same calls to FreeType, so the same pixels
-    (see :func:`_render_process_caches`)."""
-    import math as _math
-
-    from matplotlib.backends.backend_agg import get_hinting_flag
-    from matplotlib.ft2font import RenderMode
-
-    draw_boxes = renderer_class._draw_text_glyphs_and_boxes
-    draw_text = renderer_class.draw_text
-    layouts: dict = {}
-
-    def _draw_text_glyphs_and_boxes(self, gc, x, y, angle, glyphs, boxes):
-        cos = _math.cos(_math.radians(angle))
-        sin = _math.sin(_math.radians(angle))
-        load_flags = get_hinting_flag()
-        antialiased = gc.get_antialiased()
-        mode = RenderMode.NORMAL if antialiased else RenderMode.MONO
-        height, top = self.height, int(self.height)
-        draw_image = self._renderer.draw_text_image
-        matrices: dict = {}
-        for font, size, glyph_index, slant, extend, dx, dy in glyphs:  # dy is upwards
-            font.set_size(size, self.dpi)
-            matrix = matrices.get((slant, extend))
-            if matrix is None:
-                matrix = matrices[slant, extend] = (0x10000 * np.array([[cos, -sin], [sin, cos]])
-                                                    @ [[extend, extend * slant], [0, 1]]).round().astype(int)
-            font._set_transform(matrix, [round(0x40 * (x + dx * cos - dy * sin)),
-                                         round(0x40 * (height - y + dx * sin + dy * cos))])
-            bitmap = font._render_glyph(glyph_index, load_flags, mode)
-            buffer = bitmap.buffer
-            if not antialiased:
-                buffer *= 0xff
-            draw_image(buffer, bitmap.left, top - bitmap.top + buffer.shape[0], 0, gc)
-        if boxes:
-            draw_boxes(self, gc, x, y, angle, (), boxes)
-
-    def draw_text_kept(self, gc, x, y, s, prop, angle, ismath=False, mtext=None):
-        if ismath:
-            return draw_text(self, gc, x, y, s, prop, angle, ismath=ismath, mtext=mtext)
-        features = mtext.get_fontfeatures() if mtext is not None else None
-        language = mtext.get_language() if mtext is not None else None
-        key = (s, hash(prop), self.dpi, get_hinting_flag(), features, language)
-        try:
-            items = layouts.get(key)
-        except TypeError:  # features or language not hashable
-            return draw_text(self, gc, x, y, s, prop, angle, ismath=ismath, mtext=mtext)
-        font = self._prepare_font(prop)
-        if items is None:
-            items = layouts[key] = [(it.ft_object, it.glyph_index, it.x, it.y) for it in font._layout(
-                s, flags=get_hinting_flag(), features=features, language=language)]
-        size = prop.get_size_in_points()
-        glyphs = ((f, size, g, 0, 1, gx, gy) for f, g, gx, gy in items)
-        self._draw_text_glyphs_and_boxes(gc, x, y, angle, glyphs, [])
-        return None
-
-    renderer_class._draw_text_glyphs_and_boxes = _draw_text_glyphs_and_boxes
-    renderer_class.draw_text = draw_text_kept
 
 
 def _ticks_key(axis) -> tuple:

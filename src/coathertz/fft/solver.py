@@ -682,19 +682,17 @@ def polonsky_keer(
     n_in = inside.sum(axis=ax)
     delta = (gap * inside).sum(axis=ax) / n_in
     gap = gap - col(delta)
-    if sym and (ny % 2 == 0 or nx % 2 == 0):
-        # the cells without a mirror image were held at p = 0: where one penetrates, the
-        # quarter-plane problem is not the whole one; go on on the whole grid from here
-        edge = gap[:, 0, :] if ny % 2 == 0 else gap[:, :, 0]
-        if nx % 2 == 0 and ny % 2 == 0:
-            edge = xp.concatenate([edge, gap[:, :, 0]], axis=-1)
-        if bool((edge < 0).any()):
-            full = polonsky_keer(conv, g0_full, W, cell_area, tol=tol, max_iter=max_iter,
-                                 p_init=p, precondition=precondition, callback=callback)
-            full.iterations = full.iterations + iters
-            full.convolutions += nconv
-            full.wall_time = time.perf_counter() - t0
-            return full
+    # the cells without a mirror image (row 0 of an even ny, column 0 of an even nx) were held
+    # at p = 0: where one penetrates, the quarter-plane problem is not the whole one; go on on
+    # the whole grid from here
+    edges = ([gap[:, 0, :]] if ny % 2 == 0 else []) + ([gap[:, :, 0]] if nx % 2 == 0 else [])
+    if sym and any(bool((e < 0).any()) for e in edges):
+        full = polonsky_keer(conv, g0_full, W, cell_area, tol=tol, max_iter=max_iter,
+                             p_init=p, precondition=precondition, callback=callback)
+        full.iterations = full.iterations + iters
+        full.convolutions += nconv
+        full.wall_time = time.perf_counter() - t0
+        return full
     scale_d = xp.abs(delta)
     residual = xp.sqrt((gap * gap * inside).sum(axis=ax) / n_in) / scale_d
     penetration = xp.maximum(-xp.min(xp.where(inside, 0.0, gap), axis=ax), 0.0) / scale_d
