@@ -17,8 +17,12 @@ Modules, one job each:
     iteration factorises only a box around the contact and the plastic zone (exact).
 :mod:`~coathertz.fem.plastic.method`
     The load path as a user runs it: mesh and contact zone sized from the path's largest load or
-    approach and grown when the contact nears the zone's edge, the curves, final fields, JSON /
+    approach and grown when the contact nears the zone's edge (or, ``follow_contact``, meshes
+    that follow the contact), the curves, final fields, JSON /
     CSV / VTU + ``.pvd`` output.
+:mod:`~coathertz.fem.plastic.remesh`
+    Remeshing: the committed state (displacement, plastic history, contact set) carried to a new
+    mesh, for load paths whose mesh follows the growing contact.
 :mod:`~coathertz.fem.plastic.edge`
     The contact edge: the node bracket and a radius estimator valid for elastic and plastic
     edges alike.

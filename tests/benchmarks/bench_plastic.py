@@ -105,6 +105,8 @@ def main(argv=None) -> int:
                          "and print the CPU ratio")
     ap.add_argument("--delta-ratio", type=float, default=None,
                     help="approach control to this delta/delta_c (overrides --approach)")
+    ap.add_argument("--follow", action="store_true",
+                    help="contact-following meshes (solve_plastic(follow_contact=True)); prints the remeshes")
     ap.add_argument("--EY", type=float, default=200.0, help="E / Y (E = 200 GPa; default Y = 1 GPa)")
     args = ap.parse_args(argv)
     Y = 200e9 / args.EY
@@ -119,10 +121,11 @@ def main(argv=None) -> int:
         t0, c0 = time.perf_counter(), time.process_time()
         newton = NewtonSettings(condense=condense)
         if args.approach is None:
-            res = solve_plastic(case, mesh=args.mesh, n_steps=args.steps, unload=True, newton=newton)
+            res = solve_plastic(case, mesh=args.mesh, n_steps=args.steps, unload=True, newton=newton,
+                                follow_contact=args.follow)
         else:
             res = solve_plastic(case, mesh=args.mesh, n_steps=args.steps, delta_max=args.approach * 1e-6,
-                                unload=args.unload, newton=newton)
+                                unload=args.unload, newton=newton, follow_contact=args.follow)
         return res, time.perf_counter() - t0, time.process_time() - c0
 
     if args.baseline:
@@ -148,6 +151,11 @@ def main(argv=None) -> int:
     if args.baseline:
         print(f"CPU ratio baseline / now: {cpu0 / cpu:.2f}; largest load moved by "
               f"{max(c['W']) / max(base.curves['W']) - 1:.2e} (relative)")
+    print("elements across a per increment:", " ".join(f"{x:.1f}" for x in c["elements_across_a"]))
+    for r_ in m.get("remeshes", []):
+        print(f"remesh ({r_['reason']}) a_ref {r_['a_ref_old'] * 1e6:.4g} -> {r_['a_ref_new'] * 1e6:.4g} um: "
+              f"load {r_['W_change'] * 100:+.3f} % in the rebalance "
+              f"({r_['newton_iterations']} Newton iterations)")
     depth = res.final["residual_depth"]
     print(f"final load {c['W'][-1]:.5g} N, residual depth "
           f"{'-' if depth is None else f'{depth * 1e9:.2f} nm'}, max ep {m['plastic_zone']['ep_max']:.4g}")

@@ -76,6 +76,29 @@ def test_cli_plastic_reload_needs_unload(capsys):
     assert "--reload" in err and "--unload" in err
 
 
+@pytest.mark.parametrize("flag", ["--unload", "--follow-contact", "--approach=2um"])
+def test_cli_plastic_options_need_plastic(flag, capsys):
+    """A path option without ``--plastic`` is one clear line, not silently ignored."""
+    err = _one_line_error(["fem", "example:yielding_steel", flag], capsys)
+    assert flag.split("=")[0] in err and "--plastic" in err
+
+
+def test_cli_plastic_follow_contact(capsys):
+    """``--follow-contact``: the table's elements across a stay near the mesh's own at the first
+    increment (16.4 on the coarse mesh) instead of falling to 1-3 early on a mesh sized for the
+    deepest approach; one line reports the remeshes and the largest load change of a rebalance."""
+    rc = main(["fem", "example:yielding_steel", "--plastic", "--steps", "3", "--mesh", "coarse",
+               "--approach", "6 um", "--follow-contact", "--json"])
+    assert rc == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["meta"]["follow_contact"] and len(data["meta"]["remeshes"]) >= 1
+    assert min(data["elements_across_a"]) > 12 / 1.25, data["elements_across_a"]
+    rc = main(["fem", "example:yielding_steel", "--plastic", "--steps", "3", "--mesh", "coarse",
+               "--approach", "6 um", "--follow-contact"])
+    out = capsys.readouterr().out
+    assert rc == 0 and "contact-following meshes:" in out and "remeshes" in out
+
+
 def test_cli_plastic_elastic_path_says_no_plastic_zone(capsys):
     """Below first yield (54 N) there is no plastic zone: one line says so (no 'depth nan-0 um')."""
     rc = main(["fem", "example:yielding_steel", "--W", "20 N", "--plastic", "--steps", "1", "--mesh",

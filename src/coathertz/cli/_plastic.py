@@ -43,7 +43,8 @@ def run_plastic(case: ContactCase, args: argparse.Namespace) -> int:
 
         delta_max = parse_quantity(args.approach, "length", name="--approach")
     res = solve_plastic(case, mesh=mesh, n_steps=args.steps, unload=args.unload, reload=args.reload,
-                        keep_snapshots=bool(args.vtu_dir), progress=progress, delta_max=delta_max)
+                        keep_snapshots=bool(args.vtu_dir), progress=progress, delta_max=delta_max,
+                        follow_contact=bool(getattr(args, "follow_contact", False)))
     print(file=sys.stderr)
     if args.vtu_dir:
         paths = write_vtu_series(res, args.vtu_dir)
@@ -94,6 +95,11 @@ def run_plastic(case: ContactCase, args: argparse.Namespace) -> int:
                 print(f"residual interface stress ({side} side): max sigma_1 "
                       f"{d['max_sigma_1'] / 1e6:.5g} MPa at r = {d['r_max_sigma_1'] * 1e6:.4g} um, "
                       f"max |sigma_rz| {d['max_abs_sigma_rz'] / 1e6:.5g} MPa")
+    if m.get("remeshes"):
+        ch = max(abs(r_["W_change"]) for r_ in m["remeshes"])
+        print(f"contact-following meshes: {len(m['remeshes'])} remeshes (a_ref "
+              f"{m['remeshes'][0]['a_ref_old'] * 1e6:.4g} -> {m['a_ref'] * 1e6:.4g} um); the load moved by at most "
+              f"{100 * ch:.2g} % in a remesh's rebalance (the history transfer's error)")
     if m.get("zone_growths"):
         print(f"coathertz fem: note: the contact reached its candidate zone's edge "
               f"(r <= {', '.join(f'{r * 1e6:.4g}' for r in m['zone_growths'])} um); the path was solved "

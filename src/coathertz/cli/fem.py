@@ -39,11 +39,19 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     g.add_argument("--steps", type=int, default=10, help="load increments to W (default 10)")
     g.add_argument("--approach", metavar="DELTA", help="approach control to DELTA (e.g. '20 um') instead of "
                    "load control (deep indentation); the mesh is sized from DELTA")
+    g.add_argument("--follow-contact", action="store_true",
+                   help="remesh around the growing contact (the plastic history carried over), so that "
+                        "every loading increment has about as many elements across its contact")
     g.add_argument("--vtu-dir", metavar="DIR", help="--plastic: one VTU per increment (displacement, "
                    "stresses, plastic strain) and a .pvd time series")
     g.add_argument("--out-json", metavar="OUT.json", help="--plastic: write the curves and profiles")
     g.add_argument("--out-csv", metavar="OUT.csv", help="--plastic: write the curves (one row per increment)")
     g.add_argument("--plot-dir", metavar="DIR", help="--plastic: load_approach.png and plastic_zone.png")
+
+
+#: Options of the elastic-plastic path only (an error without ``--plastic``, not silently ignored).
+PLASTIC_ONLY = ("--unload", "--reload", "--approach", "--follow-contact", "--vtu-dir", "--out-json",
+                "--out-csv", "--plot-dir")
 
 
 def _solve(method, case):
@@ -87,6 +95,11 @@ def run(args: argparse.Namespace) -> int:
         if not str(args.vtu).lower().endswith(".vtu"):
             raise CoatHertzError(f"--vtu {args.vtu!r}: the file name must end in .vtu (VTK "
                                  "unstructured grid for ParaView), e.g. --vtu mesh.vtu")
+    if not args.plastic:
+        given = [f for f in PLASTIC_ONLY if getattr(args, f.lstrip("-").replace("-", "_"), None)]
+        if given:
+            raise CoatHertzError(f"{', '.join(given)}: elastic-plastic options; add --plastic (and yield data "
+                                 "in the case)")
     if args.plastic:
         if args.reload and not args.unload:
             raise CoatHertzError("--reload reloads after unloading: give --unload as well")
