@@ -74,13 +74,21 @@ Every path and onset search goes through the result store (:mod:`coathertz.fem.p
 an interrupted run recomputes only what had not finished. The solves run in ``analyse`` (forked
 processes when the run has workers), so ``RUN_EARLY``.
 
-Claims on the load and radius are judged at the targets from ``X_MIN`` on where the contact
-spans at least ``N_ACROSS_MIN`` elements (the mesh is sized for the deepest target and does
-not follow the contact; the detail says how many targets were left out).
+The ``tiny`` and ``quick`` paths (main and check) run on meshes that follow the contact
+(``solve_plastic(follow_contact=True)``, :mod:`coathertz.fem.plastic.remesh`): every target has
+about ``n_a`` elements across its contact, so the claims cover every target from ``X_MIN`` on
+(quick: delta/delta_c = 2.7, 7.4 and 20; on a mesh sized for the deepest target the first two
+had 1.8 and 4 elements across a and the first was left out; tiny: the first target, first
+yield, lands on Hertz's P = Pc, a = ac to 1e-5 and 0.4 %). The ``full`` paths keep one mesh
+each, sized for the deepest target (their cost: a following default-mesh path to
+delta/delta_c = 200 took about 5 times the fixed one's CPU, as every increment then costs what
+the fixed mesh's last ones do); there claims on the load and radius are judged at the targets
+from ``X_MIN`` on where the contact spans at least ``N_ACROSS_MIN`` elements (the detail says
+how many targets were left out).
 
-Cost (CPU, measured in one process on the shared 2-core machine under load): ``tiny`` 2.7 s,
-``quick`` 3.4 s of solves (3.75 s with the claims), ``full`` estimated 30-60 min (not run in
-full; a smoke run with meshes of 6 and 4 elements across a took 94 s).
+Cost (CPU, measured in one process on the shared 2-core machine under load): ``tiny`` about 4 s,
+``quick`` 4.7 s of solves with the claims (3.75 s on fixed meshes), ``full`` estimated 30-60 min
+(not run in full; a smoke run with meshes of 6 and 4 elements across a took 94 s).
 """
 
 from __future__ import annotations
@@ -125,10 +133,11 @@ LOAD_BOUND, P_MEAN_BOUND = 5.0, 3.0
 #: The load and radius claims start here: Jackson & Green's area fit starts at 1.9, and near 1
 #: Kogut & Etsion's area fit is 3.6 % below Hertz's exact a = a_c at delta_c (0.93^(1/2)).
 X_MIN = 1.9
-#: ... and only where the contact radius spans at least this many elements of the fine zone (the
-#: mesh is sized for the deepest target and does not follow the contact: the early targets of a
-#: deep path are under-resolved; measured on the quick path, n_a = 6 to delta/delta_c = 20: a
-#: 11 % above both fits at delta/delta_c = 2.7, where a spans 1.8 elements).
+#: ... and only where the contact radius spans at least this many elements (a fixed mesh, sized
+#: for the deepest target, under-resolves the early targets of a deep path: measured on the
+#: quick path on such a mesh, n_a = 6 to delta/delta_c = 20: a 11 % above both fits at
+#: delta/delta_c = 2.7, where a spans 1.8 elements; the contact-following paths keep every
+#: target above it).
 N_ACROSS_MIN = 4.0
 ONSET_BOUNDS = (1.0, 3.0)  # % (load or p0, depth)
 
@@ -146,8 +155,10 @@ def critical(EY: float) -> tuple[float, float, float]:
     return dc, Pc, math.sqrt(R * dc)
 
 
-def _path(pid: str, EY: float, x_max: float, n: int, mesh: MeshSpec, unload: int, role: str) -> dict:
-    return {"id": pid, "EY": EY, "x_max": x_max, "n": n, "mesh": mesh, "unload": unload, "role": role}
+def _path(pid: str, EY: float, x_max: float, n: int, mesh: MeshSpec, unload: int, role: str,
+          follow: bool = False) -> dict:
+    return {"id": pid, "EY": EY, "x_max": x_max, "n": n, "mesh": mesh, "unload": unload, "role": role,
+            "follow": follow}
 
 
 def path_plan(resolution: str) -> list[dict]:
@@ -158,8 +169,8 @@ def path_plan(resolution: str) -> list[dict]:
         x = 6.0 if resolution == "tiny" else 20.0
         n = 3 if resolution == "tiny" else 4
         return [
-            _path("EY=1000", 1000, x, n, N6, 2, "main"),
-            _path("EY=1000/check", 1000, x, 2 * n - 1, N4, 2, "check:EY=1000"),
+            _path("EY=1000", 1000, x, n, N6, 2, "main", follow=True),
+            _path("EY=1000/check", 1000, x, 2 * n - 1, N4, 2, "check:EY=1000", follow=True),
         ]
     out = []
     for EY, x in ((200, 40.0), (500, 200.0), (1000, 200.0)):  # E/Y = 200 stops at a/R ~ 0.1
@@ -278,7 +289,8 @@ def jobs(resolution: str) -> list:
         )
         targets = list(dc * np.geomspace(1.0, p["x_max"], p["n"]))
         out.append(
-            Job(p["id"], case, PATH_METHOD, path_settings(p["mesh"], targets, p["x_max"] * dc, p["unload"]))
+            Job(p["id"], case, PATH_METHOD,
+                path_settings(p["mesh"], targets, p["x_max"] * dc, p["unload"], follow=p["follow"]))
         )
     W_ys, a_ys, _ = onset_closed_form(YS)
     d_ys = a_ys**2 / R
@@ -338,13 +350,16 @@ def loading_points(summary: dict, EY: float) -> dict[str, np.ndarray]:
     g = lambda k: np.array([float(c[k][i]) for i in sel])  # noqa: E731
     Y = E / EY
     s0 = summary["meta"]["a_ref"] / summary["meta"]["mesh"]["n_a"]  # element size in the fine zone
+    # elements across each contact: the path's own count (every mesh of a contact-following path);
+    # a fixed mesh's is a / s0 inside the fine zone's uniform part
+    across = g("elements_across_a") if "elements_across_a" in c else g("a") / s0
     return {
         "x": g("delta") / dc,
         "P": g("W") / Pc,
         "a": g("a") / ac,
         "pm": g("p_mean") / Y,
         "a_err": g("a_err") / ac,
-        "n_across": g("a") / s0,
+        "n_across": across,
         "residual": float(summary["final"]["residual_depth"] or math.nan) / dc,
     }
 

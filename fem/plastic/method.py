@@ -20,12 +20,13 @@ the early contacts of a deep path: at delta/delta_c = 200 on the default mesh 3.
 increment, 25 at the last), or with ``follow_contact`` the loading runs on meshes that follow the
 contact (:mod:`coathertz.fem.plastic.remesh`: each sized for the contact radius predicted at the
 next target, the committed state carried over and solved again there; 9-38 elements across
-the contacts of that path on the default mesh, the fewest at the sub-increments of a step that was
-cut back, which run on the mesh sized for the step's end). Measured at delta/delta_c = 200, E/Y = 1000, 20 steps: the
-fixed coarse mesh (12 elements across its reference radius) puts the load 2.8 % low at
-delta/delta_c = 50 and the first-yield increment 7.7 % high, the following coarse mesh is within
-0.14 % and 0.01 % of the fixed default mesh there (which is resolved at 50: 8.7 elements) and
-of Hertz; at delta/delta_c = 200 all agree to 0.01 %.
+the contacts of that path on the default mesh, the fewest at the sub-increments of a step that
+was cut back, which run on the mesh sized for the step's end). Measured at delta/delta_c = 200,
+E/Y = 1000, 20 steps: the fixed coarse mesh (12 elements across its reference radius) puts the
+load at delta/delta_c = 50 2.8 % below the fixed default mesh's (8.7 elements across a there) and
+the first-yield increment's 7.7 % above Hertz's; the following coarse mesh is within 0.14 % and
+0.01 % of them; at delta/delta_c = 200 the four (fixed and following, coarse and default) agree
+to 0.02 %.
 
 Small strain and the half-space
 idealisation are assumed: a/R > 0.1 is warned about and recorded.

@@ -38,7 +38,8 @@ ONSET_METHOD = "fem-onset"
 
 
 def path_settings(
-    mesh: MeshSpec, targets: Sequence[float], delta_max: float, unload_steps: int = 0, rtol: float = 1e-9
+    mesh: MeshSpec, targets: Sequence[float], delta_max: float, unload_steps: int = 0, rtol: float = 1e-9,
+    follow: bool = False,
 ) -> dict:
     """JSON settings of an approach-controlled path (they key the stored result).
 
@@ -54,6 +55,10 @@ def path_settings(
         Equal load steps of the unloading to ``W = 0`` (0: no unloading).
     rtol
         Newton tolerance (relative to the path's largest load).
+    follow
+        Meshes that follow the contact (``solve_plastic(follow_contact=True)``; ``mesh`` then
+        relative to each one's contact radius). Keyed only when set, so that the fixed-mesh paths
+        keep their keys.
     """
     if not isinstance(mesh, MeshSpec):
         raise CoatHertzError(f"path_settings: mesh must be a MeshSpec, got {mesh!r}")
@@ -61,13 +66,16 @@ def path_settings(
         raise CoatHertzError(
             f"path_settings: unload_steps must be an integer in [0, 1000], got {unload_steps!r}"
         )
-    return {
+    out = {
         "mesh": asdict(mesh),
         "targets": [float(t) for t in targets],
         "delta_max": float(delta_max),
         "unload_steps": int(unload_steps),
         "rtol": float(rtol),
     }
+    if follow:
+        out["follow"] = True
+    return out
 
 
 def onset_settings(Yc: float | None, Ys: float | None, n_a: int) -> dict:
@@ -119,6 +127,8 @@ def summarise(res: Any, cpu: float) -> dict:
             "zone_growths",
             "targets",
             "mesh",
+            "follow_contact",
+            "remeshes",
         )
         if k in res.meta
     }
@@ -141,6 +151,7 @@ def solve_path(case: ContactCase, settings: dict) -> dict:
             targets=list(settings["targets"]),
             delta_max=settings["delta_max"],
             rtol=settings["rtol"],
+            follow_contact=bool(settings.get("follow", False)),
         )
     return summarise(res, time.process_time() - t0)
 

@@ -98,8 +98,8 @@ def run(args: argparse.Namespace) -> int:
     if not args.plastic:
         given = [f for f in PLASTIC_ONLY if getattr(args, f.lstrip("-").replace("-", "_"), None)]
         if given:
-            raise CoatHertzError(f"{', '.join(given)}: elastic-plastic options; add --plastic (and yield data "
-                                 "in the case)")
+            raise CoatHertzError(f"{', '.join(given)}: elastic-plastic options; add --plastic (and "
+                                 "yield data in the case)")
     if args.plastic:
         if args.reload and not args.unload:
             raise CoatHertzError("--reload reloads after unloading: give --unload as well")
