@@ -348,7 +348,9 @@ def solve_plastic(
         whose contact outgrew that band) the committed state is carried to a mesh sized for that
         radius and solved again there. Every loading increment then has about ``n_a`` to
         ``FOLLOW_BAND n_a`` elements across its contact; ``meta["remeshes"]`` lists each remesh with
-        the load's change in its rebalance (the transfer's error). Unloading stays on the last mesh.
+        the load's change in its rebalance (the transfer's error; for an increment that outgrew its
+        mesh (``reason`` ``"outgrown"``) also the correction of a contact its old candidate zone
+        had cut short). Unloading stays on the last mesh.
 
     Raises
     ------
@@ -471,7 +473,8 @@ def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_sn
         a = math.nan
         if inc.active.any():
             a_edge = float(geom.r[inc.active].max())
-            if follow_contact and phase == "loading" and a_edge > FOLLOW_BAND * cur.a_ref:
+            if follow_contact and phase == "loading" and a_edge > min(FOLLOW_BAND * cur.a_ref,
+                                                                       ZONE_FILL_MAX * cur.r_zone):
                 raise _Outgrown(inc, state, a_edge)
             if a_edge > ZONE_FILL_MAX * cur.r_zone:
                 raise ContactZoneExceeded(a_edge, cur.r_zone, inc.W)
@@ -599,7 +602,8 @@ def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_sn
             meta_targets["reloading"] = back
             records.append(unloader.run(back, state=records[-1].state, start=0.0,
                                         progress=on_phase("reloading")))
-    state = records[-1].state
+    if unload or reload:
+        state = records[-1].state  # else the loading's last state (a remesh may have followed its run)
     factorisations = sum(st_.solver.factorisations for st_ in stages)
     if (unload or reload) and unloader is not final_stage.solver:
         factorisations += unloader.factorisations
