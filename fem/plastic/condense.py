@@ -289,11 +289,23 @@ class ElasticCondensation:
         self._kslot, self._dslot = slot[: len(Kp.data)], slot[len(Kp.data):]
         self._indices = (keys % N).astype(np.int32)
         self._indptr = np.r_[0, np.cumsum(np.bincount(keys // N, minlength=N))].astype(np.int32)
-        self._slot_col = np.repeat(np.arange(N), np.diff(self._indptr))
-        diag = np.flatnonzero(self._indices == self._slot_col)
+        slot_col = np.repeat(np.arange(N), np.diff(self._indptr))
+        diag = np.flatnonzero(self._indices == slot_col)
         self._diag = np.empty(N, dtype=np.int64)
         self._diag[self._indices[diag]] = diag
+        # one gather per call: each slot's place in the tangent's data (slots of D alone read entry 0,
+        # then weighted by 0), and each slot's transposed slot (the structure is symmetric), so that
+        # an active dof's row is found from its column
+        self._src = np.zeros(len(self._indices), dtype=np.int64)
+        self._src[self._kslot] = self._kpos
+        has_k = np.zeros(len(self._indices))
+        has_k[self._kslot] = 1.0
+        self._dhas = has_k[self._dslot]
         self._Dflat = self.D.ravel()
+        tkeys = self._indices.astype(np.int64) * N + slot_col  # the slot (j, i) of slot (i, j)
+        self._tslot = np.searchsorted(keys, tkeys)
+        if not np.array_equal(keys[np.minimum(self._tslot, len(keys) - 1)], tkeys):
+            raise CoatHertzError("elastic condensation: the box structure is not symmetric (internal error)")
 
     def _box_matrix(self, K: sp.csr_matrix, fixed_box: np.ndarray) -> sp.csc_matrix:
         """The box's matrix ``K_nn - K_ge K_ee^-1 K_eg`` in :attr:`order` (``g`` last), the rows
@@ -301,13 +313,15 @@ class ElasticCondensation:
         right-hand side 0): one gather from the tangent's data into the stored structure."""
         if K.nnz != self._nnz:  # the gather needs the tangent's fixed sparsity (the assembler's)
             raise CoatHertzError("elastic condensation: the tangent's sparsity changed (internal error)")
-        data = np.zeros(len(self._indices))
-        data[self._kslot] = K.data[self._kpos]
-        data[self._dslot] -= self._Dflat
-        if fixed_box.any():
-            d = data[self._diag[fixed_box]]
-            data[fixed_box[self._indices] | fixed_box[self._slot_col]] = 0.0
-            data[self._diag[fixed_box]] = d
+        data = K.data.take(self._src)
+        data[self._dslot] = data[self._dslot] * self._dhas - self._Dflat
+        F = np.flatnonzero(fixed_box)
+        if F.size:
+            d = data[self._diag[F]]
+            cols = np.concatenate([np.arange(self._indptr[i], self._indptr[i + 1]) for i in F])
+            data[cols] = 0.0
+            data[self._tslot[cols]] = 0.0
+            data[self._diag[F]] = d
         N = len(self.order)
         return sp.csc_matrix((data, self._indices, self._indptr), shape=(N, N))
 
