@@ -208,7 +208,7 @@ class ElasticCondensation:
         U0 = np.zeros((n, m))
         for k, v in enumerate(vals):
             U0[fixed, k] = v
-        Bm = np.column_stack(rhs) - K @ U0
+        Bm = np.column_stack(rhs) - self._times_fixed(K, fixed, U0)
         is_fixed = np.zeros(n, dtype=bool)
         is_fixed[fixed] = True
         fixed_box = is_fixed[self.order]  # the active contact dofs (g stays last: none of it is fixed)
@@ -244,6 +244,28 @@ class ElasticCondensation:
         xe = self.factor.solve(np.vstack([be, t + self.S @ ug]))[: self.ne]
         U[self.e] = xe
         return [U[:, k].copy() for k in range(m)]
+
+    def _times_fixed(self, K: sp.csr_matrix, fixed: np.ndarray, U0: np.ndarray) -> np.ndarray:
+        """``K @ U0`` for ``U0`` zero off the rows ``fixed``: only the tangent's entries in those
+        columns (found through its column-major positions, computed once for its fixed sparsity),
+        summed row by row in the stored order, as ``K @ U0`` does (the skipped terms are zeros).
+        1.0 against 4.0 ms per call on the delta/delta_c = 200 path (1.7M entries, 636 fixed dofs, 2
+        columns), the same numbers bit for bit."""
+        if getattr(self, "_colpos", None) is None or len(self._colpos[0]) != K.nnz:
+            rows = np.repeat(np.arange(K.shape[0]), np.diff(K.indptr))
+            pos = np.argsort(K.indices, kind="stable")  # by column, rows ascending
+            ptr = np.r_[0, np.cumsum(np.bincount(K.indices, minlength=K.shape[1]))]
+            self._colpos = (pos, ptr, rows)
+        pos, ptr, rows = self._colpos
+        fixed = np.unique(fixed)
+        starts, lens = ptr[fixed], ptr[fixed + 1] - ptr[fixed]
+        first = np.repeat(starts - np.r_[0, np.cumsum(lens)[:-1]], lens)
+        sel = np.sort(pos[first + np.arange(int(lens.sum()))])
+        r, a, c = rows[sel], K.data[sel], K.indices[sel]
+        out = np.empty((K.shape[0], U0.shape[1]))
+        for k in range(U0.shape[1]):
+            out[:, k] = np.bincount(r, weights=a * U0[c, k], minlength=K.shape[0])
+        return out
 
     def _solve_free(self, K: sp.csr_matrix, fixed_box: np.ndarray, bn: np.ndarray) -> np.ndarray:
         """The box system with the active contact dofs ``F = fixed_box`` decoupled (``x_F = 0``,
