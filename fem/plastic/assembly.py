@@ -155,8 +155,8 @@ class BBarAssembler:
         """The elastic stiffness (assembled once) plus the changes ``dvals`` of the elements whose
         tangent departs from it, at their matrix ``slots``; ``K.nonelastic`` lists those elements."""
         if slots:
-            data = np.bincount(np.concatenate(slots), weights=np.concatenate(dvals),
-                               minlength=len(self._indices))
+            cat = (lambda a: a[0]) if len(slots) == 1 else np.concatenate  # one region: no copy
+            data = np.bincount(cat(slots), weights=cat(dvals), minlength=len(self._indices))
             data += self._elastic_data()
         else:
             data = self._elastic_data().copy()
@@ -217,7 +217,7 @@ class BBarAssembler:
             nonelastic.append(els[P[changed]])
             if changed.size:
                 Kc = self._element_stiffness(BeP[changed], D[:, :, changed], wP[changed])
-                dvals.append((Kc - Ke[P[changed]]).ravel())
+                dvals.append(np.subtract(Kc, Ke[P[changed]], out=Kc).ravel())
                 slots.append(self._slot_r[k][P[changed]].ravel())
         return F, self._tangent(slots, dvals, nonelastic), None, new_states
 
