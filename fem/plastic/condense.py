@@ -53,7 +53,6 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from coathertz.blas import blas_threads
 from coathertz.errors import CoatHertzError
 from coathertz.fem.ordering import nested_dissection
 from coathertz.fem.solvers import CondensedFactor
@@ -191,18 +190,7 @@ class ElasticCondensation:
         ``u_k`` before their far field ``u_e`` is solved (zero there; it may read them on the box's
         interior only, e.g. the active contact dofs' rows of ``K u``) and the far field is solved
         once, for the combination (linear in the right-hand sides: exact; one right-hand side
-        instead of ``m`` in the far field's triangular solves).
-
-        The box's factorisation and every solve run on one BLAS thread
-        (:func:`coathertz.blas.blas_threads`): the library's threads shorten none of them on the
-        2-core machine and keep the other core spinning. Measured on the delta/delta_c = 200 path
-        (E/Y = 1000, 20 steps) at load 2.3-3.1: 36.9 / 42.8 s wall and 53.0 / 51.8 s CPU with the
-        default two threads, 35.8 / 32.8 s wall and 35.4 / 32.6 s CPU with one (alternate runs)."""
-        with blas_threads(1):
-            return self._solve(K, rhs, fixed, vals, force_scale, combine)
-
-    def _solve(self, K, rhs, fixed, vals, force_scale, combine):
-        """:meth:`solve`'s work."""
+        instead of ``m`` in the far field's triangular solves)."""
         n = K.shape[0]
         m = len(rhs)
         U0 = np.zeros((n, m))
