@@ -84,15 +84,15 @@ one shell, the whole ``solve_plastic`` call as this script makes it:
   load 0, residual depth 246.27593 nm in every run.
 
 Where the time of the delta/delta_c = 200 path goes now (cProfile, 1 thread, 34.6 s under the
-profiler): SuperLU's factorisation 18.9 s (203 calls; the box grows to 17.8k of the 28.7k unknowns,
-2184 of 3528 elements, 75 % of them yielded, so neither a smaller box nor another box shape helps:
-a box shaped to the plastic zone measured 495 against 458 Mflop), SuperLU's solves 3.2 s, the
-assembly 6.6 s (274 calls). The box's factorisation does 458 Mflop for 17.8k unknowns at 3-4
-Gflop/s; measured and not kept: a leaf size of 8 or 16 in the nested dissection (440 / 450 Mflop,
-the same time within the noise), splitting the box into two halves factorised apart with a dense
-root (more CPU: 236 against 168 ms; SuperLU releases no parallelism), a single-precision
-factorisation with iterative refinement (two refinement steps reach round-off, but 132 against
-150 ms before them).
+profiler, with the new element stiffness, before the gather and ``K @ U0`` changes): SuperLU's
+factorisation 18.9 s (203 calls; the box grows to 17.8k of the 28.7k unknowns, 2184 of 3528
+elements, 75 % of them yielded, so neither a smaller box nor another box shape helps: a box shaped
+to the plastic zone measured 495 against 458 Mflop), SuperLU's solves 3.2 s, the assembly 6.6 s (274
+calls). The box's factorisation does 458 Mflop for 17.8k unknowns at 3-4 Gflop/s; measured and not
+kept: a leaf size of 8 or 16 in the nested dissection (440 / 450 Mflop, the same time within the
+noise), splitting the box into two halves factorised apart with a dense root (more CPU: 236 against
+168 ms; SuperLU releases no parallelism), a single-precision factorisation with iterative refinement
+(two refinement steps reach round-off, but 132 against 150 ms before them).
 
 The default two OpenBLAS threads do not shorten the path: SuperLU's factorisation here uses none
 (CPU = wall), and the second core's 20 CPU-s are spent spinning: OpenBLAS threads ``ddot`` beyond
