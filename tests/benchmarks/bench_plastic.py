@@ -91,8 +91,8 @@ to the plastic zone measured 495 against 458 Mflop), SuperLU's solves 3.2 s, the
 calls). The box's factorisation does 458 Mflop for 17.8k unknowns at 3-4 Gflop/s; measured and not
 kept: a leaf size of 8 or 16 in the nested dissection (440 / 450 Mflop, the same time within the
 noise), splitting the box into two halves factorised apart with a dense root (more CPU: 236 against
-168 ms; SuperLU releases no parallelism), a single-precision factorisation with iterative refinement
-(two refinement steps reach round-off, but 132 against 150 ms before them).
+168 ms, and on two threads no shorter: 207-247 ms wall), a single-precision factorisation with
+iterative refinement (two refinement steps reach round-off, but 132 against 150 ms before them).
 
 The default two OpenBLAS threads do not shorten the path: SuperLU's factorisation here uses none
 (CPU = wall), and the second core's 20 CPU-s are spent spinning: OpenBLAS threads ``ddot`` beyond
