@@ -104,6 +104,10 @@ class BBarAssembler:
                         for e, (els, _) in zip(ends, regions, strict=True)]
         # each region's strain operator, weights and dofs, sliced once (not copied at every call)
         self._Bq = [np.ascontiguousarray(B[:, :, els]) for els, _ in regions]
+        # and element-major, ``Be[nel, nq * 4, 18]`` (row ``4 q + i``: strain component ``i`` at point
+        # ``q``): a subset of elements is one contiguous gather, their stiffness batched products
+        self._Be = [np.ascontiguousarray(Bq.transpose(2, 3, 0, 1)).reshape(Bq.shape[2], -1, nloc)
+                    for Bq in self._Bq]
         self._wq = [self.w[els] for els, _ in regions]
         self._eq = [self.edofs[:, els] for els, _ in regions]
 
@@ -139,7 +143,7 @@ class BBarAssembler:
                 changed = np.nonzero(np.any(D != D_el[:, :, None, None], axis=(0, 1, 3)))[0]
                 nonelastic.append(els[changed])
                 if changed.size:  # the change from the elastic matrices, added to their assembly below
-                    Kc = self._element_stiffness(els[changed], D[:, :, changed], Bq[:, :, changed])
+                    Kc = self._element_stiffness(self._Be[k][changed], D[:, :, changed], w[changed])
                     dvals.append((Kc - Ke[changed]).ravel())
                     slots.append(self._slot_r[k][changed].ravel())
             sigmas.append(sig)
@@ -150,10 +154,12 @@ class BBarAssembler:
     def _tangent(self, slots: list, dvals: list, nonelastic: list) -> sp.csr_matrix:
         """The elastic stiffness (assembled once) plus the changes ``dvals`` of the elements whose
         tangent departs from it, at their matrix ``slots``; ``K.nonelastic`` lists those elements."""
-        data = self._elastic_data().copy()
         if slots:
-            data += np.bincount(np.concatenate(slots), weights=np.concatenate(dvals),
-                                minlength=len(self._indices))
+            cat = (lambda a: a[0]) if len(slots) == 1 else np.concatenate  # one region: no copy
+            data = np.bincount(cat(slots), weights=cat(dvals), minlength=len(self._indices))
+            data += self._elastic_data()
+        else:
+            data = self._elastic_data().copy()
         K = sp.csr_matrix((data, self._indices, self._indptr), shape=(self.n, self.n))
         K.nonelastic = np.concatenate(nonelastic) if nonelastic else np.zeros(0, dtype=np.int64)
         return K
@@ -191,13 +197,14 @@ class BBarAssembler:
             if P.size == 0:
                 new_states.append(st)
                 continue
-            BqP, wP, edP = self._Bq[k][:, :, P], w[P], self._eq[k][:, P]
-            eps_P = eps[:, P] if full else np.einsum("iaeq,ae->ieq", BqP, u[edP])
+            BeP, wP, edP = self._Be[k][P], w[P], self._eq[k][:, P]
+            eps_P = eps[:, P] if full else np.einsum("iaeq,ae->ieq", self._Bq[k][:, :, P], u[edP])
             st_P = {key: v[..., P, :] for key, v in st.items()} if full else st
             sig, D, st_newP = law.stress(eps_P, st_P)
-            corr = sig - np.einsum("ij,jeq->ieq", D_el, eps_P)
-            fe = np.einsum("iaeq,ieq->ae", BqP, corr * wP)
-            F += np.bincount(edP.ravel(), weights=fe.ravel(), minlength=self.n)
+            corr = (sig - np.einsum("ij,jeq->ieq", D_el, eps_P)) * wP
+            # fe[e, a] = sum_{q, i} Be[e, 4 q + i, a] corr[i, e, q]
+            fe = np.matmul(corr.transpose(1, 2, 0).reshape(len(P), 1, -1), BeP)[:, 0, :]
+            F += np.bincount(edP.T.ravel(), weights=fe.ravel(), minlength=self.n)
             if full:
                 st_new = {key: v.copy() for key, v in st.items()}
                 for key, v in st_newP.items():
@@ -209,8 +216,8 @@ class BBarAssembler:
             changed = np.nonzero(np.any(D != D_el[:, :, None, None], axis=(0, 1, 3)))[0]
             nonelastic.append(els[P[changed]])
             if changed.size:
-                Kc = self._element_stiffness(els[P[changed]], D[:, :, changed], BqP[:, :, changed])
-                dvals.append((Kc - Ke[P[changed]]).ravel())
+                Kc = self._element_stiffness(BeP[changed], D[:, :, changed], wP[changed])
+                dvals.append(np.subtract(Kc, Ke[P[changed]], out=Kc).ravel())
                 slots.append(self._slot_r[k][P[changed]].ravel())
         return F, self._tangent(slots, dvals, nonelastic), None, new_states
 
@@ -251,12 +258,17 @@ class BBarAssembler:
         data = np.bincount(self._slot, weights=np.concatenate(vals), minlength=len(self._indices))
         return sp.csr_matrix((data, self._indices, self._indptr), shape=(self.n, self.n))
 
-    def _element_stiffness(self, els: np.ndarray, D: np.ndarray, Bq: np.ndarray | None = None) -> np.ndarray:
-        """``Ke[nel, 18, 18]`` of ``elements`` with the tangent ``D[4, 4, nel, nq]`` (``Bq``: their
-        strain operator, if already sliced)."""
-        Bq = self.B[:, :, els] if Bq is None else Bq
-        DB = np.einsum("ijeq,jbeq->ibeq", D, Bq)
-        return np.einsum("iaeq,ibeq,eq->eab", Bq, DB, self.w[els], optimize=True)
+    @staticmethod
+    def _element_stiffness(Be: np.ndarray, D: np.ndarray, w: np.ndarray) -> np.ndarray:
+        """``Ke[nel, 18, 18] = sum_q w_q B_q^T D_q B_q`` of elements with the element-major strain
+        operator ``Be[nel, nq * 4, 18]``, the tangent ``D[4, 4, nel, nq]`` and the weights
+        ``w[nel, nq]``: two batched matrix products (``D_q B_q`` per point, then ``B^T`` times the
+        stacked ``w D B``). Measured on the delta/delta_c = 200 path's late iterations (1573
+        elements, 1 BLAS thread): 6 ms against 29 ms for the einsum over ``[4, 18, nel, nq]``."""
+        ne, nl = Be.shape[0], Be.shape[2]
+        wD = D.transpose(2, 3, 0, 1) * w[:, :, None, None]  # [nel, nq, 4, 4]
+        DB = np.matmul(wD, Be.reshape(ne, -1, 4, nl))  # [nel, nq, 4, 18]
+        return np.matmul(Be.transpose(0, 2, 1), DB.reshape(ne, -1, nl))
 
     def _elastic(self, k: int, els: np.ndarray, law) -> tuple[np.ndarray, np.ndarray]:
         """The elastic tangent of region ``k``'s law (at zero strain, no history) and its element
@@ -265,6 +277,7 @@ class BBarAssembler:
             D_el = np.array(law.stress(np.zeros((4, 1, 1)), law.initial_state((1, 1))
                                        if hasattr(law, "initial_state") else {})[1])[:, :, 0, 0]
             shape = (4, 4, len(els), self.w.shape[1])
-            Ke = self._element_stiffness(els, np.broadcast_to(D_el[:, :, None, None], shape))
+            D = np.broadcast_to(D_el[:, :, None, None], shape)
+            Ke = self._element_stiffness(self._Be[k], D, self._wq[k])
             self._elastic_Ke[k] = (D_el, Ke)
         return self._elastic_Ke[k]

@@ -69,9 +69,43 @@ delta/delta_c = 200 35.0 s: box factorisations 17.6 s (203, boxes up to 90 % of 
 assembly 8.7 s (275 calls, ~32 ms each: most of the fine zone yields, and every yielded element's
 stiffness is integrated again), six condensations 1.5 s, the fit 1.05 s.
 
-The targets (3 s, 30 s) are not reached: the box's factorisation (up to 12k unknowns), one or two solves
-with the far field's factor and the assembly (~40 ms) per iteration remain, at 4-10 iterations
-per increment.
+Element stiffness of the yielded elements as two batched matrix products on an element-major
+strain operator (29 -> 6 ms for 1573 elements), the box matrix as one gather from the tangent's
+data, ``K @ U0`` over the essential and active columns only (4.0 -> 1.0 ms); the base commit's
+``fem/`` (ddc7b82, a copy, ``coathertz.fem.__path__`` pointed at it) and the new one alternately in
+one shell, the whole ``solve_plastic`` call as this script makes it:
+
+- delta/delta_c = 200 (E/Y = 1000, 20 steps), 1 BLAS thread, load 1.05: 33.2 / 34.8 -> 28.7 /
+  30.2 s CPU; default threads, load 1.4-1.8: 33.0 / 34.4 -> 29.2 / 29.2 s wall (55.6 / 57.9 ->
+  50.0 / 50.0 s CPU); 197 iterations (the same per increment), largest load 364.433014631 N in
+  every run;
+- README load path, 1 BLAS thread: 5.9 / 6.6 / 7.6 -> 6.3 / 6.5 / 6.7 s CPU (no change beyond the
+  noise: its time is the box factorisations and the far field's solves); 78 iterations, final
+  load 0, residual depth 246.27593 nm in every run.
+
+Where the time of the delta/delta_c = 200 path goes now (cProfile, 1 thread, 34.6 s under the
+profiler, with the new element stiffness, before the gather and ``K @ U0`` changes): SuperLU's
+factorisation 18.9 s (203 calls; the box grows to 17.8k of the 28.7k unknowns, 2184 of 3528
+elements, 75 % of them yielded, so neither a smaller box nor another box shape helps: a box shaped
+to the plastic zone measured 495 against 458 Mflop), SuperLU's solves 3.2 s, the assembly 6.6 s (274
+calls). The box's factorisation does 458 Mflop for 17.8k unknowns at 3-4 Gflop/s; measured and not
+kept: a leaf size of 8 or 16 in the nested dissection (440 / 450 Mflop, the same time within the
+noise), splitting the box into two halves factorised apart with a dense root (more CPU: 236 against
+168 ms, and on two threads no shorter: 207-247 ms wall), a single-precision factorisation with
+iterative refinement (two refinement steps reach round-off, but 132 against 150 ms before them).
+
+The default two OpenBLAS threads do not shorten the path: SuperLU's factorisation here uses none
+(CPU = wall), and the second core's 20 CPU-s are spent spinning: OpenBLAS threads ``ddot`` beyond
+10k entries, and each ``np.linalg.norm`` of a long vector leaves its worker spinning about 0.11 s.
+The condensation's norms no longer use BLAS (``condense._norm``); the residual's norm in
+``contact.py`` (``IncrementalContact._residual``) still does. With both off BLAS (that one run
+under one BLAS thread): 32.1 s wall, 32.1 s CPU, against 29.1 s wall, 48.6 s CPU with the residual's
+norm threaded (load 1.1-1.4, the same iterations and loads); the whole increment under one thread,
+two pairs: 29.9 / 28.9 s wall and 30.0 / 29.0 s CPU against 29.4 / 29.1 s wall and 51.3 / 50.1 s CPU.
+
+The targets (3 s, 30 s) are not reached reliably: the box's factorisation (up to 17.8k unknowns),
+one or two solves with the far field's factor and the assembly (~25-30 ms late in the deep path) per
+iteration remain, at 4-15 iterations per increment.
 
 Usage: ``python tests/benchmarks/bench_plastic.py [--steps 10] [--mesh default] [--approach 20]
 [--unload] [--baseline] [--delta-ratio 200 --EY 1000]``.
