@@ -47,13 +47,13 @@ factorises the whole tangent.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from coathertz.blas import norm2
 from coathertz.errors import CoatHertzError
 from coathertz.fem.ordering import nested_dissection
 from coathertz.fem.solvers import CondensedFactor
@@ -75,15 +75,6 @@ MAX_FRACTION = 0.9
 #: displacements), round-off of 2e-14 of that norm was about 1e-9 of the load and the coated path
 #: of ``tests/plasticity/test_condense.py`` stopped converging.
 T_REUSE = 1e-12
-
-
-def _norm(x: np.ndarray) -> float:
-    """Euclidean norm of a vector without BLAS: OpenBLAS threads ``ddot`` (and so ``np.linalg.norm``)
-    beyond 10k entries, and each such call leaves its second thread spinning for about 0.11 s
-    (measured: 0.11 CPU-s during a 0.3 s sleep after one norm of 28.7k entries, none after this
-    one); in the Newton loop that kept the other core busy (20 of 50 CPU-s on the
-    delta/delta_c = 200 path)."""
-    return math.sqrt(float(np.einsum("i,i->", x, x)))
 
 
 @dataclass
@@ -170,9 +161,9 @@ class ElasticCondensation:
         kept = []  # stored (b_e, t) pairs hit this time (stored as solved: no drift)
         for k in range(m):
             b, tol = be[:, k], T_REUSE * scale
-            if _norm(b) <= tol:
+            if norm2(b) <= tol:
                 continue
-            hit = next((pair for pair in self._tmemo if _norm(pair[0] - b) <= tol), None)
+            hit = next((pair for pair in self._tmemo if norm2(pair[0] - b) <= tol), None)
             if hit is None:
                 todo.append(k)
             else:

@@ -77,6 +77,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse.linalg as spla
 
+from coathertz.blas import norm2
 from coathertz.errors import CoatHertzError, ConvergenceError
 from coathertz.fem.plastic.assembly import BBarAssembler
 from coathertz.fem.plastic.condense import MAX_FRACTION, ElasticCondensation, ElementBoxes, box_for
@@ -358,7 +359,7 @@ class IncrementalContact:
         R[g.cand[active]] = 0.0
         lam = -F[g.cand[active]]
         bal = (W - lam.sum()) if self.control == "load" else 0.0
-        return F, K, trial, lam, math.hypot(float(np.linalg.norm(R)), bal) / self.scale
+        return F, K, trial, lam, math.hypot(norm2(R), bal) / self.scale
 
     def solve_increment(self, state: PathState, target: float) -> tuple[PathState, Increment] | None:
         """Newton loop to ``target`` from the committed ``state``; ``None`` if it fails."""

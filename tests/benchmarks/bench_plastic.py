@@ -97,11 +97,12 @@ iterative refinement (two refinement steps reach round-off, but 132 against 150 
 The default two OpenBLAS threads do not shorten the path: SuperLU's factorisation here uses none
 (CPU = wall), and the second core's 20 CPU-s are spent spinning: OpenBLAS threads ``ddot`` beyond
 10k entries, and each ``np.linalg.norm`` of a long vector leaves its worker spinning about 0.11 s.
-The condensation's norms no longer use BLAS (``condense._norm``); the residual's norm in
-``contact.py`` (``IncrementalContact._residual``) still does. With both off BLAS (that one run
-under one BLAS thread): 32.1 s wall, 32.1 s CPU, against 29.1 s wall, 48.6 s CPU with the residual's
-norm threaded (load 1.1-1.4, the same iterations and loads); the whole increment under one thread,
-two pairs: 29.9 / 28.9 s wall and 30.0 / 29.0 s CPU against 29.4 / 29.1 s wall and 51.3 / 50.1 s CPU.
+The condensation's norms and the residual's norm in ``contact.py`` (``IncrementalContact._residual``)
+no longer use BLAS (``coathertz.blas.norm2``). Measured before the residual's was changed, with it
+run under one BLAS thread to simulate that: 32.1 s wall, 32.1 s CPU, against 29.1 s wall, 48.6 s
+CPU with the residual's norm threaded (load 1.1-1.4, the same iterations and loads); the whole
+increment under one thread, two pairs: 29.9 / 28.9 s wall and 30.0 / 29.0 s CPU against 29.4 /
+29.1 s wall and 51.3 / 50.1 s CPU.
 
 The targets (3 s, 30 s) are not reached reliably: the box's factorisation (up to 17.8k unknowns),
 one or two solves with the far field's factor and the assembly (~25-30 ms late in the deep path) per

@@ -64,15 +64,16 @@ def test_condensed_path_equals_whole_tangent_path(coated):
 
 def test_product_over_the_fixed_columns_and_the_norm():
     """``ElasticCondensation._times_fixed`` (``K @ U0`` from the entries in the columns where ``U0``
-    is nonzero) and ``_norm`` (the Euclidean norm without BLAS) on a random symmetric sparse matrix
-    of 30k rows (beyond OpenBLAS's 10k threading size): within the round-off bound
+    is nonzero) and ``coathertz.blas.norm2`` (the Euclidean norm without BLAS) on a random symmetric
+    sparse matrix of 30k rows (beyond OpenBLAS's 10k threading size): within the round-off bound
     ``4 eps (|K| |U0|)`` row by row (on x86-64 the same numbers bit for bit: the sums run in the
     stored order) and the norm to 1e-14."""
     import types
 
     import scipy.sparse as sp
 
-    from coathertz.fem.plastic.condense import ElasticCondensation, _norm
+    from coathertz.blas import norm2
+    from coathertz.fem.plastic.condense import ElasticCondensation
 
     rng = np.random.default_rng(5)
     n = 30_000
@@ -87,4 +88,4 @@ def test_product_over_the_fixed_columns_and_the_norm():
     bound = 4 * np.finfo(float).eps * (abs(K) @ np.abs(U0)) + 1e-300
     assert np.all(np.abs(got - ref) <= bound), float(np.max(np.abs(got - ref) / bound))
     x = rng.standard_normal(n)
-    assert abs(_norm(x) / np.linalg.norm(x) - 1) < 1e-14
+    assert abs(norm2(x) / np.linalg.norm(x) - 1) < 1e-14
