@@ -464,6 +464,7 @@ def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_sn
     profiles: list[dict] = []
     snapshots: list = []
     increments: list = []
+    stage_of: list[int] = []  # the mesh (index into stages) of every recorded increment
     remeshes: list[dict] = []
 
     def record(inc, state: PathState, phase: str) -> None:
@@ -509,6 +510,7 @@ def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_sn
         curves["residual_depth"].append(float(-state.u[cur.top][0]))
         profiles.append({"r": geom.r, "p": p, "u_z": state.u[geom.cand]})
         increments.append(inc)
+        stage_of.append(len(stages) - 1)
         if keep_snapshots:
             # the committed state: stresses follow from it without further flow (write_vtu_series)
             snapshots.append((state.u.copy(), [{k: v.copy() for k, v in st.items()} for st in state.states],
@@ -639,7 +641,14 @@ def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_sn
         warnings.warn(msg, ModelValidityWarning, stacklevel=3)
         meta["validity"] = msg
     if locate_first_yield:
-        meta["first_yield"] = _first_yield_load(solver, stages[0].asm, up, curves)
+        # on the mesh of the first plastic increment (a following path's first mesh is sized for
+        # the first target only); its contact zone holds every load below that increment's
+        def stage_at(k: int) -> tuple[IncrementalContact, BBarAssembler]:
+            st_ = stages[stage_of[k]]
+            return st_.solver, st_.asm
+
+        xs = curves["W"] if control == "load" else [d / eq.delta_factor for d in curves["delta"]]
+        meta["first_yield"] = _first_yield_load(stage_at, xs, curves)
     # final fields: stresses at the largest load and, after unloading, the residual state
     final: dict = {"plastic_zone": _plastic_zone(asm, state.states)}
     for name, st in (("loaded", saved.get("loaded")), ("residual", saved.get("residual"))):
@@ -655,26 +664,34 @@ def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_sn
                          [(st_.model, st_.asm) for st_ in stages])
 
 
-def _first_yield_load(solver: IncrementalContact, asm: BBarAssembler, targets, curves) -> dict:
-    """Bisect the load at which the first quadrature point yields (relative precision 1e-4)."""
+def _first_yield_load(stage_at: Callable, xs: list[float], curves) -> dict:
+    """Bisect the load at which the first quadrature point yields (relative precision 1e-4 in the
+    path's control variable ``xs``: the loads, or the model's approaches, of the increments), on
+    the mesh ``stage_at(k) -> (solver, assembler)`` of the first increment ``k`` with plastic
+    strain."""
     ep = np.array(curves["ep_max"])
     Ws = np.array(curves["W"])
     k = int(np.argmax(ep > 0)) if (ep > 0).any() else -1
     if k < 0:
         return {"W": None, "note": "no plastic point along the path"}
-    lo = float(Ws[k - 1]) if k > 0 else 0.0
-    hi = float(Ws[k])
-    state0 = solver.run([lo]).state if lo > 0 else solver.initial_state()
+    solver, asm = stage_at(k)
+    lo = float(xs[k - 1]) if k > 0 else 0.0
+    hi = float(xs[k])
+    W_lo, W_hi = (float(Ws[k - 1]) if k > 0 else 0.0), float(Ws[k])
+    state0 = solver.initial_state()
+    if lo > 0:
+        rec = solver.run([lo])
+        state0, W_lo = rec.state, rec.increments[-1].W
     while hi - lo > 1e-4 * hi:
         mid = 0.5 * (lo + hi)
-        st = solver.run([mid], state=state0, start=lo).state
-        if max(float(s_["ep"].max()) for s_ in st.states if "ep" in s_) > 0:
-            hi = mid
+        rec = solver.run([mid], state=state0, start=lo)
+        if max(float(s_["ep"].max()) for s_ in rec.state.states if "ep" in s_) > 0:
+            hi, W_hi = mid, rec.increments[-1].W
         else:
-            lo, state0 = mid, st
+            lo, state0, W_lo = mid, rec.state, rec.increments[-1].W
     _, _, sig, _ = asm.evaluate(state0.u, state0.states, tangent=False)
     ratio, k_reg, r, z = _first_point_yield(asm, sig)
-    return {"W": 0.5 * (lo + hi), "W_lo": lo, "W_hi": hi, "region": k_reg, "r": r, "z": z,
+    return {"W": 0.5 * (W_lo + W_hi), "W_lo": W_lo, "W_hi": W_hi, "region": k_reg, "r": r, "z": z,
             "q_over_Y": ratio}
 
 
