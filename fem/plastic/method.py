@@ -348,7 +348,9 @@ def solve_plastic(
         whose contact outgrew that band) the committed state is carried to a mesh sized for that
         radius and solved again there. Every loading increment then has about ``n_a`` to
         ``FOLLOW_BAND n_a`` elements across its contact; ``meta["remeshes"]`` lists each remesh with
-        the load's change in its rebalance (the transfer's error; for an increment that outgrew its
+        the change of the load (``W_change``; of the approach, ``delta_change``, under load control:
+        ``change`` is the one that is not prescribed) in its rebalance (the transfer's error; for an
+        increment that outgrew its
         mesh (``reason`` ``"outgrown"``) also the correction of a contact its old candidate zone
         had cut short). Unloading stays on the last mesh.
 
@@ -543,9 +545,15 @@ def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_sn
                     f"(a_ref {old.a_ref * 1e6:.4g} -> {a_new * 1e6:.4g} um) did not converge")
             st2, inc2 = out
             stages.append(new)
+            d_now = state.delta  # the model's approach before the transfer
+            d_change = inc2.delta / d_now - 1.0 if d_now and math.isfinite(d_now) else 0.0
+            W_change = inc2.W / W_now - 1.0 if W_now else 0.0
             remeshes.append({"target": target, "reason": reason, "a_ref_old": old.a_ref, "a_ref_new": a_new,
-                             "W_before": W_now, "W_after": inc2.W,
-                             "W_change": inc2.W / W_now - 1.0 if W_now else 0.0,
+                             "W_before": W_now, "W_after": inc2.W, "W_change": W_change,
+                             "delta_change": d_change,
+                             # the free variable's change: the load's under approach control, the
+                             # approach's under load control (the other is prescribed)
+                             "change": W_change if control == "approach" else d_change,
                              "newton_iterations": inc2.newton_iterations,
                              "elements": new.lm.n_elements})
             if outgrown is None:

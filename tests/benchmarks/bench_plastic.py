@@ -189,7 +189,8 @@ def main(argv=None) -> int:
     print("elements across a per increment:", " ".join(f"{x:.1f}" for x in c["elements_across_a"]))
     for r_ in m.get("remeshes", []):
         print(f"remesh ({r_['reason']}) a_ref {r_['a_ref_old'] * 1e6:.4g} -> {r_['a_ref_new'] * 1e6:.4g} um: "
-              f"load {r_['W_change'] * 100:+.3f} % in the rebalance "
+              f"{'load' if m['control'] == 'approach' else 'approach'} {r_['change'] * 100:+.3f} % "
+              "in the rebalance "
               f"({r_['newton_iterations']} Newton iterations)")
     depth = res.final["residual_depth"]
     print(f"final load {c['W'][-1]:.5g} N, residual depth "

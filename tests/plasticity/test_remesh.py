@@ -183,3 +183,24 @@ def test_first_yield_under_approach_control_on_the_following_mesh():
     assert fy["W_lo"] <= fy["W"] <= fy["W_hi"] and fy["W_hi"] - fy["W_lo"] < 1e-3 * fy["W"]
     assert abs(fy["W"] / W_Y - 1) < 0.01 and abs(-fy["z"] / A_Y - 0.48) < 0.02 and fy["r"] < 0.1 * A_Y, fy
     assert out[False]["W"] / W_Y - 1 < -0.05, out[False]
+
+
+def test_following_mesh_under_load_control():
+    """Load control (6 W_y in 4 steps, unloading): the rebalance's change is the approach's (the load
+    is prescribed; measured -0.04 %), every loading increment keeps >= n_a / FOLLOW_BAND elements
+    across a (the fixed mesh starts at 4.8), and the largest approach and the residual depth agree
+    with the fixed mesh's, whose last increments are resolved too (measured 3e-5 and 8e-4)."""
+    case = ContactCase(Body.rigid_sphere(R), Body.half_space(STEEL_J2), 6 * W_Y)
+    out = {fol: solve_plastic(case, mesh=TINY, n_steps=4, follow_contact=fol, unload=True)
+           for fol in (True, False)}
+    res = out[True]
+    assert res.meta["remeshes"]
+    for m in res.meta["remeshes"]:
+        assert m["W_change"] == 0.0 and m["change"] == m["delta_change"] and abs(m["change"]) < 0.01, m
+    c = res.curves
+    top = c["phase"].index("unloading") - 1
+    assert min(c["elements_across_a"][: top + 1]) >= TINY.n_a / FOLLOW_BAND
+    fixed = out[False]
+    d_max = c["delta"][top] / fixed.curves["delta"][top] - 1
+    d_res = res.final["residual_depth"] / fixed.final["residual_depth"] - 1
+    assert abs(d_max) < 0.005 and abs(d_res) < 0.01, (d_max, d_res)

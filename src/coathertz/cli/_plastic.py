@@ -96,10 +96,11 @@ def run_plastic(case: ContactCase, args: argparse.Namespace) -> int:
                       f"{d['max_sigma_1'] / 1e6:.5g} MPa at r = {d['r_max_sigma_1'] * 1e6:.4g} um, "
                       f"max |sigma_rz| {d['max_abs_sigma_rz'] / 1e6:.5g} MPa")
     if m.get("remeshes"):
-        ch = max(abs(r_["W_change"]) for r_ in m["remeshes"])
+        ch = max(abs(r_["change"]) for r_ in m["remeshes"])
+        what = "load" if m["control"] == "approach" else "approach"
         print(f"contact-following meshes: {len(m['remeshes'])} remeshes (a_ref "
               f"{m['remeshes'][0]['a_ref_old'] * 1e6:.4g} -> {m['a_ref'] * 1e6:.4g} um); "
-              "the load moved by at most "
+              f"the {what} moved by at most "
               f"{100 * ch:.2g} % in a remesh's rebalance (the history transfer's error)")
     if m.get("zone_growths"):
         print(f"coathertz fem: note: the contact reached its candidate zone's edge "
