@@ -120,6 +120,8 @@ import os
 import platform
 import time
 
+import numpy as np
+
 from coathertz.case import ContactCase
 from coathertz.fem.plastic.contact import NewtonSettings
 from coathertz.fem.plastic.method import solve_plastic
@@ -192,10 +194,42 @@ def main(argv=None) -> int:
               f"{'load' if m['control'] == 'approach' else 'approach'} {r_['change'] * 100:+.3f} % "
               "in the rebalance "
               f"({r_['newton_iterations']} Newton iterations)")
+    if args.delta_ratio is not None:
+        _mean_pressure_report(res, mat, a_y)
     depth = res.final["residual_depth"]
     print(f"final load {c['W'][-1]:.5g} N, residual depth "
           f"{'-' if depth is None else f'{depth * 1e9:.2f} nm'}, max ep {m['plastic_zone']['ep_max']:.4g}")
     return 0
+
+
+def _mean_pressure_report(res, mat: Material, a_y: float) -> None:
+    """Issue 20's mean-pressure check on an approach path: p_mean / Y at delta/delta_c = 50 and 100
+    (the path's own increments there; delta_c = a_y^2 / R with Hertz's first yield) against Kogut &
+    Etsion (2002) and Jackson & Green (2005) at the same approach, and the largest departure of an
+    increment's p_mean from the log-log interpolation between its neighbours for
+    delta/delta_c >= 20 (the scatter)."""
+    from coathertz.fem.plastic.published import jackson_green, kogut_etsion
+
+    c = res.curves
+    Y = mat.plasticity.Y
+    dc = a_y**2 / R
+    rows = [(d / dc, pm / Y) for d, pm, ph in zip(c["delta"], c["p_mean"], c["phase"], strict=True)
+            if ph == "loading" and pm > 0]
+    for target in (50.0, 100.0):
+        hit = [(x, pm) for x, pm in rows if abs(x / target - 1) < 1e-6]
+        if not hit:
+            continue
+        x, pm = hit[0]
+        ke = kogut_etsion(x * dc, mat.E_star, Y, mat.nu, R).p_mean / Y
+        jg = jackson_green(x * dc, mat.E_star, Y, mat.nu, R).p_mean / Y
+        print(f"p_mean/Y at delta/delta_c = {x:g}: {pm:.4f}; Kogut & Etsion {ke:.4f} "
+              f"({100 * (pm / ke - 1):+.1f} %), Jackson & Green {jg:.4f} ({100 * (pm / jg - 1):+.1f} %)")
+    xs = np.log([x for x, _ in rows if x >= 20.0])
+    ps = np.log([pm for x, pm in rows if x >= 20.0])
+    if len(xs) >= 3:
+        dev = [abs(math.exp(ps[k] - np.interp(xs[k], xs[[k - 1, k + 1]], ps[[k - 1, k + 1]])) - 1)
+               for k in range(1, len(xs) - 1)]
+        print(f"p_mean scatter for delta/delta_c >= 20: largest {100 * max(dev):.2f} % (goal <= 2 %)")
 
 
 if __name__ == "__main__":
