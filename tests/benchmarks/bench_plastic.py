@@ -104,9 +104,12 @@ CPU with the residual's norm threaded (load 1.1-1.4, the same iterations and loa
 increment under one thread, two pairs: 29.9 / 28.9 s wall and 30.0 / 29.0 s CPU against 29.4 /
 29.1 s wall and 51.3 / 50.1 s CPU.
 
-The targets (3 s, 30 s) are not reached reliably: the box's factorisation (up to 17.8k unknowns),
-one or two solves with the far field's factor and the assembly (~25-30 ms late in the deep path) per
-iteration remain, at 4-15 iterations per increment.
+With the residual's norm off BLAS (idle, 15:49-16:09 UTC): delta/delta_c = 200 in 27.7, 25.3 and
+26.8 s wall (CPU = wall; the base ddc7b82 alternating with the first two: 33.1 and 28.9 s wall,
+54.8 and 50.7 s CPU), under the 30 s target; the README load path 6.0, 6.8 and 7.7 s wall (7.6-9.3 s
+CPU; base 6.9-7.7 s wall, 12.9-14.2 s CPU), not the 3 s target: per Newton iteration the box's
+factorisation (up to 17.8k unknowns), one or two solves with the far field's factor and the
+assembly (~25-30 ms late in the deep path) remain, at 4-15 iterations per increment.
 
 Contact-following meshes (``--follow``) and the mean-pressure check (printed for
 ``--delta-ratio``), delta/delta_c = 200 at E/Y = 1000 in 20 steps, idle, one run each (16:09 UTC):
