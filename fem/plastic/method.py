@@ -57,11 +57,17 @@ from coathertz.closedform.hertz import hertz_circular
 from coathertz.errors import CoatHertzError, ConvergenceError
 from coathertz.fem.farfield import BoussinesqFarField
 from coathertz.fem.material import LinearElastic
-from coathertz.fem.mesh import MeshSpec, build_mesh
+from coathertz.fem.mesh import LayeredMesh, MeshSpec, build_mesh
 from coathertz.fem.method import axisymmetric_equivalent, refuse_plastic_stack
 from coathertz.fem.model import FEModel, Region
 from coathertz.fem.plastic.assembly import BBarAssembler
-from coathertz.fem.plastic.contact import IncrementalContact, NewtonSettings, PathState, geometry_of
+from coathertz.fem.plastic.contact import (
+    ContactGeometry,
+    IncrementalContact,
+    NewtonSettings,
+    PathState,
+    geometry_of,
+)
 from coathertz.fem.plastic.edge import edge_radius
 from coathertz.fem.plastic.j2 import J2Plastic, equivalent_stress
 from coathertz.fem.plastic.onset import hertz_axis_onset
@@ -136,10 +142,10 @@ class _Stage:
     """One mesh of a path: model, assembler, contact geometry and increment loop."""
 
     a_ref: float
-    lm: object
+    lm: LayeredMesh
     model: FEModel
     asm: BBarAssembler
-    geom: object
+    geom: ContactGeometry
     solver: IncrementalContact
 
     def __post_init__(self) -> None:
@@ -423,7 +429,7 @@ def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_sn
     def a_hint(W_: float) -> float:  # Hertz radius (Johnson eq 4.22) of the top material
         return float(hertz_circular(W_, R, E_top).a0) if W_ > 0 else 0.0
 
-    def build_stage(a_ref_: float, control_: str = control) -> _Stage:
+    def build_stage(a_ref_: float) -> _Stage:
         lm_ = build_mesh(a_ref_, h, spec, rigid_base)
         regions = []
         if h > 0:
@@ -433,7 +439,7 @@ def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_sn
         model_ = FEModel(lm_, regions, None if rigid_base else body.material, BoussinesqFarField())
         asm_ = BBarAssembler(model_.basis, [(reg.elements, reg.law) for reg in regions], bbar=bbar)
         geom_ = geometry_of(model_, lambda r: r**2 / (2.0 * R), a_hint)
-        solver_ = IncrementalContact(asm_, geom_, control_, W, settings)
+        solver_ = IncrementalContact(asm_, geom_, control, W, settings)
         return _Stage(a_ref_, lm_, model_, asm_, geom_, solver_)
 
     if not (isinstance(n_steps, int) and 1 <= n_steps <= 10000):
@@ -565,7 +571,7 @@ def _solve_plastic_once(case, mesh, n_steps, unload, reload, bbar, rtol, keep_sn
                 on_phase("loading")(inc2, st2, 0)
                 return st2
             except _Outgrown as again:  # the rebalanced contact outgrew the new mesh too
-                state, a_new, W_now, outgrown = again.state, again.a_edge, again.inc.W, outgrown
+                state, a_new, W_now, outgrown = again.state, again.a_edge, again.inc.W, again.inc
         raise CoatHertzError(f"elastic-plastic FE: the contact kept outgrowing its mesh after "
                              f"{MAX_REBALANCE_GROWTHS} remeshes at {control} {target:.6g}")
 

@@ -34,24 +34,26 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--json", action="store_true", help="machine-readable output")
     g = parser.add_argument_group("elastic-plastic (J2) load path; yield data from the case's materials")
     g.add_argument("--plastic", action="store_true", help="incremental elastic-plastic solution")
-    g.add_argument("--unload", action="store_true", help="unload to zero after loading (residual state)")
-    g.add_argument("--reload", action="store_true", help="reload to W after unloading")
     g.add_argument("--steps", type=int, default=10, help="load increments to W (default 10)")
-    g.add_argument("--approach", metavar="DELTA", help="approach control to DELTA (e.g. '20 um') instead of "
-                   "load control (deep indentation); the mesh is sized from DELTA")
-    g.add_argument("--follow-contact", action="store_true",
-                   help="remesh around the growing contact (the plastic history carried over), so that "
-                        "every loading increment has about as many elements across its contact")
-    g.add_argument("--vtu-dir", metavar="DIR", help="--plastic: one VTU per increment (displacement, "
-                   "stresses, plastic strain) and a .pvd time series")
-    g.add_argument("--out-json", metavar="OUT.json", help="--plastic: write the curves and profiles")
-    g.add_argument("--out-csv", metavar="OUT.csv", help="--plastic: write the curves (one row per increment)")
-    g.add_argument("--plot-dir", metavar="DIR", help="--plastic: load_approach.png and plastic_zone.png")
+    # the options below mean nothing without --plastic: given without it, they are an error (run)
+    plastic_only: list[argparse.Action] = []
 
+    def only(*flags: str, **kw) -> None:
+        plastic_only.append(g.add_argument(*flags, **kw))
 
-#: Options of the elastic-plastic path only (an error without ``--plastic``, not silently ignored).
-PLASTIC_ONLY = ("--unload", "--reload", "--approach", "--follow-contact", "--vtu-dir", "--out-json",
-                "--out-csv", "--plot-dir")
+    only("--unload", action="store_true", help="unload to zero after loading (residual state)")
+    only("--reload", action="store_true", help="reload to W after unloading")
+    only("--approach", metavar="DELTA", help="approach control to DELTA (e.g. '20 um') instead of "
+         "load control (deep indentation); the mesh is sized from DELTA")
+    only("--follow-contact", action="store_true",
+         help="remesh around the growing contact (the plastic history carried over), so that "
+              "every loading increment has about as many elements across its contact")
+    only("--vtu-dir", metavar="DIR", help="--plastic: one VTU per increment (displacement, "
+         "stresses, plastic strain) and a .pvd time series")
+    only("--out-json", metavar="OUT.json", help="--plastic: write the curves and profiles")
+    only("--out-csv", metavar="OUT.csv", help="--plastic: write the curves (one row per increment)")
+    only("--plot-dir", metavar="DIR", help="--plastic: load_approach.png and plastic_zone.png")
+    parser.set_defaults(plastic_only=tuple((a.option_strings[0], a.dest) for a in plastic_only))
 
 
 def _solve(method, case):
@@ -96,7 +98,7 @@ def run(args: argparse.Namespace) -> int:
             raise CoatHertzError(f"--vtu {args.vtu!r}: the file name must end in .vtu (VTK "
                                  "unstructured grid for ParaView), e.g. --vtu mesh.vtu")
     if not args.plastic:
-        given = [f for f in PLASTIC_ONLY if getattr(args, f.lstrip("-").replace("-", "_"), None)]
+        given = [flag for flag, dest in getattr(args, "plastic_only", ()) if getattr(args, dest, None)]
         if given:
             raise CoatHertzError(f"{', '.join(given)}: elastic-plastic options; add --plastic (and "
                                  "yield data in the case)")
