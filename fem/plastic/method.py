@@ -367,6 +367,8 @@ def solve_plastic(
     ConvergenceError
         An increment that does not converge.
     """
+    if not isinstance(follow_contact, bool):
+        raise CoatHertzError(f"follow_contact must be True or False, got {follow_contact!r}")
     if not (isinstance(max_growths, int) and 0 <= max_growths <= 10):
         raise CoatHertzError(f"max_growths must be an integer in [0, 10], got {max_growths!r}")
     tried: list[float] = []

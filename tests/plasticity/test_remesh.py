@@ -204,3 +204,12 @@ def test_following_mesh_under_load_control():
     d_max = c["delta"][top] / fixed.curves["delta"][top] - 1
     d_res = res.final["residual_depth"] / fixed.final["residual_depth"] - 1
     assert abs(d_max) < 0.005 and abs(d_res) < 0.01, (d_max, d_res)
+
+
+def test_follow_contact_must_be_a_bool():
+    """A non-boolean ``follow_contact`` (e.g. the string "no", which is truthy) is one clear error."""
+    from coathertz.errors import CoatHertzError
+
+    case = ContactCase(Body.rigid_sphere(R), Body.half_space(STEEL_J2), W_Y)
+    with pytest.raises(CoatHertzError, match="follow_contact must be True or False, got 'no'"):
+        solve_plastic(case, mesh=TINY, follow_contact="no")
