@@ -244,6 +244,8 @@ class IncrementalContact:
         self.scale = float(force_scale)
         self.settings = settings or NewtonSettings()
         self.factorisations = 0
+        self._fronts: list[tuple[float, float]] = []  # (target, contact front [m]) of converged states
+        self._predict = True  # no failed attempt since the last converged increment
 
     def initial_state(self) -> PathState:
         states = [law.initial_state(self.asm.w[els].shape) for els, law in self.asm.regions]
@@ -391,10 +393,9 @@ class IncrementalContact:
         pushed more of the surface at once). A linear extrapolation from the unloaded start
         predicted twice the second increment's radius (Hertz ``a ~ W^(1/3)``), and that
         increment diverged."""
-        fronts = getattr(self, "_fronts", [])
-        if len(fronts) < 2 or not getattr(self, "_predict", True):
+        if len(self._fronts) < 2 or not self._predict:
             return active
-        (t0, a0), (t1, a1) = fronts[-2:]
+        (t0, a0), (t1, a1) = self._fronts[-2:]
         if min(t0, t1, a0, a1, target) <= 0.0 or t1 == t0:
             return active
         a_pred = a1 * (target / t1) ** (math.log(a1 / a0) / math.log(t1 / t0))
@@ -492,8 +493,7 @@ class IncrementalContact:
         state = state or self.initial_state()
         rec = PathRecord()
         current = float(start)
-        fronts = getattr(self, "_fronts", [])
-        if not fronts or fronts[-1][0] != current:  # a path that does not continue the last one
+        if not self._fronts or self._fronts[-1][0] != current:  # a path that does not continue the last one
             self._fronts = [(current, self._front_of(state.active))]
         for k, tgt in enumerate(targets):
             tgt = float(tgt)
