@@ -48,9 +48,12 @@ Uncertainties: every value of a path is also computed on a second discretisation
 ``quick``: a coarser mesh with about twice as many increments; ``full``: the coarse mesh, and
 half the increments on the default mesh); the uncertainty is the Richardson error estimate of
 each check, summed: twice the difference for a mesh check, ``1/(r^p - 1)`` times it for a check
-with ``r`` times the increments, with the order ``p`` = ``STEP_ORDER`` = 0.3 (the increment
-error converges slowly: P at delta/delta_c = 20 rises by 3.6 % from 5 to 80 increments, observed
-orders 0.0-0.7). Onsets: twice the difference to a coarser elastic
+with ``r`` times the loading targets (the plans' counts, not the recorded increments, which
+include the sub-increments of outgrown meshes), with the order ``p`` = ``STEP_ORDER`` = 0.3 (the
+increment error converges slowly: P at delta/delta_c = 20 rises by 3.6 % from 5 to 80
+increments, observed orders 0.0-0.7). At a point between two targets a check shares with the
+path (the ``full`` step check has every other target) the larger of the neighbours' relative
+differences is taken (:func:`path_uncertainty`). Onsets: twice the difference to a coarser elastic
 mesh. Mesh and step convergence at :math:`\delta/\delta_c = 20` (``full``): three meshes and three
 step counts, observed orders (``extra["convergence"]``).
 
@@ -427,9 +430,18 @@ STEP_ORDER = 0.3
 
 def richardson_factor(main: dict, check: dict) -> float:
     """Factor from ``|main - check|`` to the error of ``main``: ``1 / (r^p - 1)`` with ``r`` the
-    ratio of the two paths' increments and ``p`` = ``STEP_ORDER`` where they differ in the
-    increments, else 2 (a mesh check: first order, ratio ~1.5-1.7)."""
-    n_m, n_c = len(main["x"]), len(check["x"])
+    ratio of the two paths' loading targets (``"targets"``, the plan's count) and ``p`` =
+    ``STEP_ORDER`` where they differ in the targets, else 2 (a mesh check: first order, ratio
+    ~1.5-1.7).
+
+    The targets, not the recorded increments: a path on a contact-following mesh records a
+    sub-increment wherever an increment outgrew its mesh or was cut back, so two paths with the
+    same targets on different meshes record different numbers of increments (the full plan's
+    E/Y = 1000 path: 19 on its mesh, 17 on the coarse check's). Counted as a step check with
+    ``r = 19/17`` that mesh difference was multiplied by 30 instead of 2 (p_m at delta/delta_c =
+    53 read +-58 %)."""
+    n_m = main.get("targets", len(main["x"]))
+    n_c = check.get("targets", len(check["x"]))
     if n_m == n_c:
         return 2.0
     r = max(n_m, n_c) / min(n_m, n_c)
@@ -437,13 +449,34 @@ def richardson_factor(main: dict, check: dict) -> float:
 
 
 def path_uncertainty(main: dict, checks: list[dict], key: str) -> dict[float, float]:
-    """``x -> u`` of ``main[key]``: the difference to each check at the common targets times its
-    :func:`richardson_factor`, summed over the checks."""
+    """``x -> u`` of ``main[key]``: the difference to each check times its
+    :func:`richardson_factor`, summed over the checks. At the targets both paths reach the
+    difference itself; at a point of ``main`` between two such targets (a check with half the
+    targets reaches every other one; a sub-increment), the larger of the two neighbours'
+    relative differences times ``main``'s value there (the error grows along a path, so the
+    larger neighbour bounds it). Without that, a step check left no trace at every other target:
+    in the full plan E/Y = 500's worst P against Jackson & Green (delta/delta_c = 74) carried
+    +-0.06 % (the mesh check alone) where its neighbours carried +-3 %."""
     u: dict[float, float] = {}
+    xs = np.asarray(main["x"], float)
+    vals = np.asarray(main[key], float)
     for chk in checks:
         f = richardson_factor(main, chk)
-        for x, d in _common(main, chk, key).items():
-            u[x] = u.get(x, 0.0) + f * d
+        d = _common(main, chk, key)
+        cx = np.array(sorted(x for x in d if vals[np.argmin(np.abs(xs - x))] != 0.0))
+        if cx.size == 0:
+            continue
+        rel = np.array([d[x] / abs(vals[np.argmin(np.abs(xs - x))]) for x in cx])
+        for x, v in zip(xs, vals, strict=True):
+            x = float(x)
+            if x in d:
+                e = d[x]
+            elif cx[0] < x < cx[-1] and np.isfinite(v):
+                j = int(np.searchsorted(cx, x))
+                e = float(max(rel[j - 1], rel[j])) * abs(float(v))
+            else:
+                continue
+            u[x] = u.get(x, 0.0) + f * e
     return u
 
 
@@ -474,7 +507,8 @@ def analyse(result: C.StudyResult) -> None:
             done[j.id] = r
     result.extra["cpu"] = {k: v["meta"]["cpu"] if "meta" in v else v["cpu"] for k, v in done.items()}
     plan = path_plan(result.resolution)
-    pts = {p["id"]: loading_points(done[p["id"]], p["EY"]) for p in plan if p["id"] in done}
+    pts = {p["id"]: {**loading_points(done[p["id"]], p["EY"]), "targets": p["n"]}
+           for p in plan if p["id"] in done}
     curves = {}
     for p in (p for p in plan if p["role"] == "main" and p["id"] in pts):
         checks = [pts[q["id"]] for q in plan if q["role"] == f"check:{p['id']}" and q["id"] in pts]

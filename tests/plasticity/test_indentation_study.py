@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pytest
 
 from coathertz import verification as C
@@ -33,6 +34,39 @@ def test_indentation_protocol():
     assert 2 * Es * ac / (math.pi * S.R) == pytest.approx((0.454 + 0.41 * 0.3) * 2.8 * 0.2e9, rel=1e-12)
     assert S.observed_order((1.0, 0.5, 0.25), 2.0) == pytest.approx(1.0)
     assert math.isnan(S.observed_order((1.0, 0.5, 0.75), 2.0))
+
+
+def test_richardson_factor_counts_targets_not_recorded_increments():
+    """A mesh check is a mesh check even where a contact-following path recorded sub-increments
+    (outgrown meshes, cutbacks) that the other did not: the factor follows the plans' target
+    counts. The full plan's E/Y = 1000 path recorded 19 increments on its mesh and 17 on the
+    coarse check's, for 17 targets each; read as a step check that was 1 / ((19/17)^0.3 - 1) ~ 30
+    instead of 2."""
+    S = get_study("indentation")
+    main = {"x": list(range(19)), "targets": 17}
+    coarse = {"x": list(range(17)), "targets": 17}
+    steps = {"x": list(range(10)), "targets": 9}
+    assert S.richardson_factor(main, coarse) == 2.0
+    step_factor = 1.0 / ((17 / 9) ** S.STEP_ORDER - 1.0)
+    assert S.richardson_factor(main, steps) == pytest.approx(step_factor, rel=1e-12)
+    # without the plans' counts: the recorded increments (points built by hand)
+    assert S.richardson_factor({"x": [1, 2, 3]}, {"x": [1, 2, 3]}) == 2.0
+
+
+def test_path_uncertainty_between_a_step_checks_targets():
+    """A step check with every other target: at the main path's points in between, the larger of
+    the neighbours' relative differences, scaled to the point's value (none outside the common
+    range); at the common targets the difference itself."""
+    S = get_study("indentation")
+    grid = np.arange(1.0, 7.0)
+    main = {"x": grid, "P": grid.copy(), "targets": 5}
+    chk = {"x": np.array([1.0, 3.0, 5.0]), "P": np.array([1.1, 3.3, 5.0]), "targets": 3}
+    f = S.richardson_factor(main, chk)
+    u = S.path_uncertainty(main, [chk], "P")
+    assert sorted(u) == [1.0, 2.0, 3.0, 4.0, 5.0]  # 6 lies beyond the last common target
+    assert u[1.0] == pytest.approx(0.1 * f) and u[3.0] == pytest.approx(0.3 * f) and u[5.0] == 0.0
+    assert u[2.0] == pytest.approx(0.1 * 2.0 * f)  # neighbours 10 % and 10 %
+    assert u[4.0] == pytest.approx(0.1 * 4.0 * f)  # neighbours 10 % and 0 %: the larger
 
 
 def _onset_jobs():
