@@ -156,13 +156,21 @@ def test_closed_pipe_exits_quietly(tmp_path):
     assert r.stderr == "", r.stderr
 
 
+def _default_sigint() -> None:
+    """In the child: Ctrl-C's default action, whatever the launcher left. A suite started in the
+    background by a non-interactive shell (``bash .ci/run &``) ignores SIGINT, and a Python
+    started so keeps ignoring it: the run then went on past the test's timeout."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 @pytest.mark.skipif(not EXE.exists() or os.name != "posix", reason="needs the console script and POSIX")
 def test_sigint_to_the_process_group_prints_no_worker_traceback(tmp_path):
     """Ctrl-C in a terminal signals the whole process group, workers included."""
     p = subprocess.Popen([str(EXE), "verify", "--full", "--study", "fig3", "--method", "fft",  # minutes
                           "--no-progress", "--workers", "2", "--out", str(tmp_path / "o")],
                          stderr=subprocess.PIPE, stdout=subprocess.PIPE, text=True,
-                         start_new_session=True, env={**os.environ, "OMP_NUM_THREADS": "1"})
+                         start_new_session=True,
+                         preexec_fn=_default_sigint, env={**os.environ, "OMP_NUM_THREADS": "1"})
     deadline = time.monotonic() + 60
     while time.monotonic() < deadline and not (tmp_path / "o" / "store.sqlite").exists():
         time.sleep(0.1)

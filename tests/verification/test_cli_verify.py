@@ -100,8 +100,12 @@ def test_cli_interrupted_midway_then_resumed(tmp_path):
     out = tmp_path / "r"
     args = ["verify", "--quick", "--study", "fig3", "--method", "closed-form", "--method", "fft",
             "--no-progress", "--workers", "2", "--out", str(out)]
+    # Ctrl-C's default action in the child whatever the launcher left: a suite started in the
+    # background by a non-interactive shell (``bash .ci/run &``) ignores SIGINT, and a Python
+    # started with SIGINT ignored keeps ignoring it (this test then failed with exit status 0)
     proc = subprocess.Popen([sys.executable, "-m", "coathertz.cli", *args],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     db = out / "store.sqlite"
     n_cf = len(get_study("fig3").cases("quick"))
     try:
