@@ -386,9 +386,9 @@ class IncrementalContact:
         Load control only (``NewtonSettings.predict_active``). Measured on the default mesh:
         the README load path (10 + 10 steps) 78 -> 54 Newton iterations (unloading 34 -> 15:
         without it each increment spent one iteration per ring of nodes the contact lost), the
-        README approach path's load-controlled unloading 31 -> 22; the same loads, approaches and
+        README approach path's load-controlled unloading 27 -> 18; the same loads, approaches and
         residual depth. Under approach control it did not help: loading on the README approach
-        path 64 -> 65 iterations, delta/delta_c = 200 (E/Y = 1000) 197 -> 228 (its Newton loops
+        path 68 -> 69 iterations, delta/delta_c = 200 (E/Y = 1000) 197 -> 228 (its Newton loops
         are long for the plastic flow, not for the contact, and a larger first active set
         pushed more of the surface at once). A linear extrapolation from the unloaded start
         predicted twice the second increment's radius (Hertz ``a ~ W^(1/3)``), and that
