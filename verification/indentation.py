@@ -484,13 +484,14 @@ def path_uncertainty(main: dict, checks: list[dict], key: str) -> dict[float, fl
     u: dict[float, float] = {}
     xs = np.asarray(main["x"], float)
     vals = np.asarray(main[key], float)
+    value = {float(x): float(v) for x, v in zip(xs, vals, strict=True)}  # _common's keys are main's x
     for chk in checks:
         f = richardson_factor(main, chk)
         d = _common(main, chk, key)
-        cx = np.array(sorted(x for x in d if vals[np.argmin(np.abs(xs - x))] != 0.0))
+        cx = np.array(sorted(x for x in d if value[x] != 0.0))
         if cx.size == 0:
             continue
-        rel = np.array([d[x] / abs(vals[np.argmin(np.abs(xs - x))]) for x in cx])
+        rel = np.array([d[x] / abs(value[x]) for x in cx])
         for x, v in zip(xs, vals, strict=True):
             x = float(x)
             if x in d:
@@ -923,7 +924,7 @@ def _plot_curves(result: C.StudyResult, curves: dict, outdir) -> list:
     fig, axes = C.figure(3, 1, width=4.0, height=3.6)
     ax_P, ax_a, ax_pm = axes[0]
     x_fit = np.geomspace(1.0, 200.0, 120)
-    EYS = {int(pid.split("=")[1]) for pid in curves}
+    ey_all = {int(pid.split("=")[1]) for pid in curves}
     for pid, cv in curves.items():
         EY = int(pid.split("=")[1])
         col = PLOT_COLOURS.get(EY, "k")
@@ -932,7 +933,7 @@ def _plot_curves(result: C.StudyResult, curves: dict, outdir) -> list:
         for ax, q in ((ax_P, "P"), (ax_a, "a"), (ax_pm, "pm")):
             # error bars: the path's discretisation uncertainty (second discretisation), where known
             u = np.nan_to_num(np.array(cv.get(f"u_{q}", [np.nan] * len(x)), dtype=float))
-            hidden = EY == 500 and 1000 in EYS  # the same curves in these units (exact self-similarity)
+            hidden = EY == 500 and 1000 in ey_all  # the same curves in these units (exact self-similarity)
             note = ("(under E/Y = 1000: self-similar, exact)" if hidden
                     else "(bars: discretisation uncertainty)")
             dense = len(x) > 25  # the full paths' 65 targets: small markers, every fourth bar

@@ -99,6 +99,17 @@ class ElementBoxes:
         return cls(r.min(0), r.max(0), t.min(0), t.max(0))
 
 
+@dataclass
+class _FreeBox:
+    """The box matrix ``M`` with no dof decoupled, for one tangent (whose CSR ``data`` it keeps),
+    its factors and the columns ``Z[:, i] = M^-1 e_i`` computed so far, by dof."""
+
+    lu: spla.SuperLU
+    cols: dict
+    M: sp.csc_matrix
+    data: np.ndarray
+
+
 class ElasticCondensation:
     """The elastic far field of one box condensed on its interface (module docstring).
 
@@ -150,8 +161,8 @@ class ElasticCondensation:
         self.Di, self.Dj = np.nonzero(np.ones_like(self.D, dtype=bool))
         self._template(KE)
         self._last = None  # (order, tangent data, factors) of the last box factorisation
-        self._free = None  # (factors, {dof: column of Z}, M) of the box with no dof decoupled, same tangent
-        self._free_el = None  # the same for the elastic tangent (K^E everywhere), kept while the box stands
+        self._free: _FreeBox | None = None  # the box with no dof decoupled, for the last tangent
+        self._free_el: _FreeBox | None = None  # the same for the elastic tangent, kept while the box stands
         self.reused = 0  # box factorisations reused (the same tangent and active set)
         self.elastic = 0  # of those, solves with the elastic tangent's box factors (:attr:`_free_el`)
         self._tmemo: list = []  # (b_e, t) of the last solve's right-hand sides
@@ -275,7 +286,7 @@ class ElasticCondensation:
         nonelastic = getattr(K, "nonelastic", None)
         if nonelastic is None or nonelastic.size:
             return False
-        return self._free_el is None or np.array_equal(self._free_el[3], K.data)
+        return self._free_el is None or np.array_equal(self._free_el.data, K.data)
 
     def _solve_free(self, K: sp.csr_matrix, fixed_box: np.ndarray, bn: np.ndarray,
                     elastic: bool = False) -> np.ndarray:
@@ -287,28 +298,29 @@ class ElasticCondensation:
         the decoupled system's: exact, as a factorisation of that system. Elastic unloading keeps
         the tangent while the contact shrinks node by node: one factorisation and about one column
         per contact node replace a factorisation per Newton iteration."""
-        if (self._free_el if elastic else self._free) is None:
+        free = self._free_el if elastic else self._free
+        if free is None:
             M = self._box_matrix(K, np.zeros_like(fixed_box))
             lu = spla.splu(M, permc_spec="NATURAL", diag_pivot_thresh=0.01, options={"SymmetricMode": True})
+            free = _FreeBox(lu, {}, M, K.data.copy())
             if elastic:
-                self._free_el = (lu, {}, M, K.data.copy())
+                self._free_el = free
             else:
-                self._free = (lu, {}, M)
-        free = self._free_el if elastic else self._free
+                self._free = free
         x = self._capacitance_solve(free, fixed_box, bn)
         # one step of iterative refinement on the decoupled system (rows F: x_F = 0 already): the
         # capacitance form is not backward stable by itself, and the Newton loop, which solves for
         # the total displacement, would stall at its error (measured: out-of-balance 1.2e-8 of the
         # load on the coated path of tests/plasticity/test_condense.py; rtol is 1e-9)
-        r = bn - free[2] @ x
+        r = bn - free.M @ x
         r[fixed_box] = 0.0
         return x + self._capacitance_solve(free, fixed_box, r)
 
     @staticmethod
-    def _capacitance_solve(free: tuple, fixed_box: np.ndarray, bn: np.ndarray) -> np.ndarray:
+    def _capacitance_solve(free: _FreeBox, fixed_box: np.ndarray, bn: np.ndarray) -> np.ndarray:
         """One solve of ``_solve_free``'s decoupled system by the capacitance form, with the free
-        box's ``(factors, columns of Z, ...)``."""
-        lu, cols = free[:2]
+        box's factors and its columns of ``Z``."""
+        lu, cols = free.lu, free.cols
         F = np.flatnonzero(fixed_box)
         new = [i for i in F if i not in cols]
         if new:
