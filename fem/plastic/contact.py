@@ -74,6 +74,7 @@ state.
 from __future__ import annotations
 
 import math
+import numbers
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
@@ -180,6 +181,22 @@ class NewtonSettings:
     #: path's last two converged contact fronts (``IncrementalContact._predicted_active``; only
     #: the start changes, ``False`` starts from the committed active set, for comparison).
     predict_active: bool = True
+
+    def __post_init__(self) -> None:
+        """One clear error for a setting outside what the loop can use (no silent coercion: a
+        truthy string would switch a feature on, a tolerance below the out-of-balance force's
+        round-off floor, about 1e-12 of the load, would never be met)."""
+        ranges = {"rtol": (1e-13, 1e-3), "max_newton": (1, 200), "max_cutbacks": (0, 30), "grow": (1.0, 4.0)}
+        for name, (lo, hi) in ranges.items():
+            v = getattr(self, name)
+            kind = numbers.Integral if name.startswith("max_") else numbers.Real
+            if isinstance(v, bool) or not isinstance(v, kind) or not (lo <= v <= hi):  # NaN fails the range
+                what = "an integer" if kind is numbers.Integral else "a number"
+                raise CoatHertzError(f"NewtonSettings: {name} must be {what} in [{lo:g}, {hi:g}], got {v!r}")
+        for name in ("line_search", "condense", "predict_active"):
+            v = getattr(self, name)
+            if not isinstance(v, bool):
+                raise CoatHertzError(f"NewtonSettings: {name} must be True or False, got {v!r}")
 
 
 @dataclass

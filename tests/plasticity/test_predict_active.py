@@ -38,3 +38,27 @@ def test_predicted_active_set_same_path_fewer_iterations():
     n_plain, n_pred = sum(its_plain), sum(its_pred)
     assert n_pred < n_plain, (f"no fewer Newton iterations with the predicted active set: {n_pred} "
                               f"against {n_plain}", its_pred, its_plain)
+
+
+def test_newton_settings_reject_nonsense_with_one_line():
+    """Every Newton setting outside what the loop can use is one CoatHertzError naming it and its
+    range (a truthy string must not switch a feature on; a tolerance below the residual's
+    round-off floor would never be met); numpy scalars in range are accepted."""
+    import pytest
+
+    from coathertz.errors import CoatHertzError
+
+    NewtonSettings(max_newton=np.int64(5), rtol=np.float64(1e-8))
+    bad = [("rtol", 0.0, "[1e-13, 0.001]"), ("rtol", float("nan"), "[1e-13, 0.001]"),
+           ("rtol", "1e-9", "a number"),
+           ("max_newton", 2.5, "an integer in [1, 200]"), ("max_newton", True, "an integer"),
+           ("max_cutbacks", -1, "[0, 30]"), ("grow", 0.5, "[1, 4]"), ("condense", "no", "True or False"),
+           ("predict_active", 1, "True or False")]
+    for name, value, says in bad:
+        with pytest.raises(CoatHertzError) as err:
+            NewtonSettings(**{name: value})
+        msg = str(err.value)
+        assert msg.startswith(f"NewtonSettings: {name} must be") and says in msg and "\n" not in msg, msg
+    with pytest.raises(CoatHertzError, match="rtol must be a number"):
+        case = ContactCase(Body.rigid_sphere(R), Body.half_space(STEEL_J2), 50.0)
+        solve_plastic(case, mesh=SMALL, rtol=-1.0)
