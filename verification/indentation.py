@@ -95,9 +95,8 @@ were left out: none on following meshes).
 Cost (CPU, measured in one process on the shared 2-core machine under load): ``tiny`` about 4 s,
 ``quick`` 4.7 s of solves with the claims (3.75 s on fixed meshes); ``full`` (35 stored
 results: 9 paths to delta/delta_c = 40 or 200 on following meshes, 5 convergence paths, the
-coated paths and the onsets): the 9 load paths 627 s wall with 2 workers while the test suite
-ran beside it, the other 26 results taken from the store of a run with 17 and 9 targets instead
-of ``FULL_TARGETS`` (262-265 s for all 35); published in
+coated paths and the onsets) 368 s wall with 2 workers, 11.4 min CPU (with 17 and 9 targets
+instead of ``FULL_TARGETS``: 262-265 s); published in
 ``reports/published/indentation_full``.
 
 The ``full`` run (E/Y = 500 and 1000 give the same normalised curves to the last digit, exact
